@@ -1,0 +1,94 @@
+// A scene: the YAML file a user launches. This is the typed, validated form of its
+// generic part (time, mode, DDS, participants, connections, compared signals); each
+// participant's `params:` stays a ConfigNode that its node type parses (libs/cosim/catalog).
+// The grammar is documented in docs/scenes.md.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mechsim/config/config_node.h"
+
+namespace mechsim::config {
+
+struct TimeSpec {
+  double start = 0.0;  // s
+  double end = 0.0;    // s
+  double step = 0.0;   // macro (base) step H, s
+  long steps() const;  // number of macro steps, (end - start) / step, exact
+};
+
+enum class EdgeOrder { jacobi, gauss_seidel };
+enum class Reconstruction { hold, linear };
+
+struct SolverSpec {
+  std::string method = "cvode_bdf";  // cvode_bdf | cvode_adams
+  double rtol = 1e-6;
+  double atol = 1e-9;
+};
+
+struct ParticipantSpec {
+  std::string name;    // instance name, unique in the scene; prefixes its topics
+  std::string type;    // node type, e.g. "cam_shaft"
+  std::string vendor;  // DDS vendor of this node
+  SolverSpec solver;
+  ConfigNode params;   // type-specific, validated by the node type
+  std::string key_path;  // "participants.cam" for error messages
+};
+
+struct ConnectionSpec {
+  std::string from;  // publishing participant
+  std::string to;    // subscribing participant
+  EdgeOrder order = EdgeOrder::jacobi;
+  Reconstruction reconstruction = Reconstruction::hold;
+  std::string key_path;  // "connections[1]"
+};
+
+// A signal "participant.output" compared with the reference.
+struct SignalRef {
+  std::string participant;
+  std::string output;
+  std::string key_path;
+  std::string full_name() const { return participant + "." + output; }
+};
+
+// An extremum the run summary states, e.g. the minimum contact force and the cam angle
+// where it occurs.
+struct ReportSpec {
+  std::string stat;  // "min" | "max"
+  SignalRef signal;
+  std::optional<SignalRef> at;  // another signal evaluated at the extremum
+  std::string at_unit;          // display unit of `at` (e.g. "deg"), "" = SI
+  double at_scale = 1.0;        // SI value / at_scale = displayed value
+  bool at_wrap_turn = false;    // wrap an angle into [0, 360) deg
+};
+
+struct Scene {
+  std::string file;         // path it was loaded from
+  std::string name;
+  std::string description;
+  TimeSpec time;
+  std::string mode = "lockstep";  // lockstep | realtime
+  double rtf = 1.0;
+  std::string vendor = "cyclone";  // scene-wide default
+  std::optional<int> domain_id;    // default: the launcher picks a free one
+  double hang_timeout = 5.0;       // s without a status from a node => hung
+  std::vector<ParticipantSpec> participants;
+  std::vector<ConnectionSpec> connections;
+  std::vector<SignalRef> compare;
+  std::vector<ReportSpec> report;
+  ConfigNode root;  // the whole document (with overrides applied)
+
+  const ParticipantSpec* find_participant(const std::string& name) const;
+};
+
+// Loads and validates the generic part of a scene. `overrides` are "dotted.key=value"
+// strings (from --set and the shortcut options) applied before validation.
+// Throws ConfigError naming the file and key path.
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides = {});
+
+// Writes the scene document (with overrides applied) as YAML, for the run folder.
+std::string scene_to_yaml(const Scene& scene);
+
+}  // namespace mechsim::config

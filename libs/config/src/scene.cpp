@@ -1,0 +1,177 @@
+#include "mechsim/config/scene.h"
+
+#include <cmath>
+#include <sstream>
+
+#include <yaml-cpp/yaml.h>
+
+#include "mechsim/config/units.h"
+
+namespace mechsim::config {
+
+long TimeSpec::steps() const { return std::lround((end - start) / step); }
+
+const ParticipantSpec* Scene::find_participant(const std::string& name) const {
+  for (const auto& p : participants)
+    if (p.name == name) return &p;
+  return nullptr;
+}
+
+namespace {
+
+bool valid_name(const std::string& s) {
+  if (s.empty() || s.size() > 48) return false;
+  for (char c : s)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_')) return false;
+  return std::isalpha(static_cast<unsigned char>(s[0]));
+}
+
+SignalRef parse_signal_ref(const ConfigNode& node, const std::string& text) {
+  auto dot = text.find('.');
+  if (dot == std::string::npos || dot == 0 || dot + 1 == text.size())
+    node.fail("expected a signal 'participant.output', got '" + text + "'");
+  return {text.substr(0, dot), text.substr(dot + 1), node.path()};
+}
+
+TimeSpec parse_time(const ConfigNode& t) {
+  t.allow_only({"start", "end", "step"});
+  TimeSpec spec;
+  spec.start = t.has("start") ? t.quantity("start", dim::time) : 0.0;
+  spec.end = t.quantity("end", dim::time);
+  spec.step = t.positive_quantity("step", dim::time);
+  if (!(spec.end > spec.start))
+    t.child("end").fail("expected an end time after the start time (" + std::to_string(spec.start) + " s)");
+  double n = (spec.end - spec.start) / spec.step;
+  if (std::abs(n - std::round(n)) > 1e-9 * std::max(1.0, n))
+    t.child("end").fail("expected end - start to be a whole number of steps (got " + std::to_string(n) + " steps)");
+  if (std::round(n) > 1e9) t.child("step").fail("expected at most 1e9 steps");
+  return spec;
+}
+
+SolverSpec parse_solver(const ConfigNode& s) {
+  s.allow_only({"method", "rtol", "atol"});
+  SolverSpec spec;
+  if (s.has("method")) spec.method = s.choice("method", {"cvode_bdf", "cvode_adams"});
+  if (s.has("rtol")) {
+    spec.rtol = s.number("rtol");
+    if (!(spec.rtol > 0 && spec.rtol < 1)) s.child("rtol").fail("expected a relative tolerance in (0, 1)");
+  }
+  if (s.has("atol")) {
+    spec.atol = s.number("atol");
+    if (!(spec.atol > 0)) s.child("atol").fail("expected a positive absolute tolerance");
+  }
+  return spec;
+}
+
+}  // namespace
+
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
+  Scene scene;
+  scene.file = path;
+  scene.root = ConfigNode::load_file(path);
+  for (const auto& o : overrides) scene.root.set_override(o.substr(0, o.find('=')),
+                                                          o.find('=') == std::string::npos ? "" : o.substr(o.find('=') + 1));
+  const ConfigNode& root = scene.root;
+  if (!root.is_map()) root.fail("expected a scene: a map with keys scene, time, participants, ...");
+  root.allow_only({"scene", "description", "time", "mode", "rtf", "dds", "hang_timeout",
+                   "participants", "connections", "compare", "report", "record"});
+
+  scene.name = root.string("scene");
+  if (!valid_name(scene.name)) root.child("scene").fail("expected a name of letters, digits and '_'");
+  if (root.has("description")) scene.description = root.string("description");
+  scene.time = parse_time(root.child("time"));
+  if (root.has("mode")) scene.mode = root.choice("mode", {"lockstep", "realtime"});
+  if (root.has("rtf")) {
+    scene.rtf = root.number("rtf");
+    if (!(scene.rtf > 0)) root.child("rtf").fail("expected a real-time factor > 0");
+  }
+  if (scene.mode == "realtime")
+    root.child("mode").fail("expected 'lockstep': real-time pacing is not implemented yet");
+  if (root.has("hang_timeout")) scene.hang_timeout = root.positive_quantity("hang_timeout", dim::time);
+  if (auto dds = root.optional_child("dds")) {
+    dds->allow_only({"vendor", "domain"});
+    if (dds->has("vendor")) scene.vendor = dds->choice("vendor", {"cyclone", "fastdds"});
+    if (dds->has("domain") && dds->string("domain") != "auto") {
+      long d = dds->integer("domain");
+      if (d < 0 || d > 232) dds->child("domain").fail("expected 'auto' or a domain id in 0..232");
+      scene.domain_id = static_cast<int>(d);
+    }
+  }
+  if (root.has("record")) root.child("record").fail("expected no 'record' section: recording is not implemented yet");
+
+  const ConfigNode participants = root.child("participants");
+  if (!participants.is_map() || participants.size() == 0)
+    participants.fail("expected a map of participant instances (name: {type: ..., params: ...})");
+  for (const std::string& name : participants.keys()) {
+    ConfigNode p = participants.child(name);
+    if (!valid_name(name)) p.fail("expected an instance name of letters, digits and '_'");
+    p.allow_only({"type", "params", "dds", "solver"});
+    ParticipantSpec spec;
+    spec.name = name;
+    spec.type = p.string("type");
+    spec.vendor = p.has("dds") ? p.choice("dds", {"cyclone", "fastdds"}) : scene.vendor;
+    if (auto s = p.optional_child("solver")) spec.solver = parse_solver(*s);
+    spec.params = p.has("params") ? p.child("params") : ConfigNode::from_string("{}", root.file());
+    spec.key_path = p.path();
+    scene.participants.push_back(std::move(spec));
+  }
+
+  if (auto conns = root.optional_child("connections")) {
+    if (!conns->is_sequence()) conns->fail("expected a list of connections");
+    for (std::size_t i = 0; i < conns->size(); ++i) {
+      ConfigNode c = conns->at(i);
+      c.allow_only({"from", "to", "order", "reconstruction"});
+      ConnectionSpec spec;
+      spec.from = c.string("from");
+      spec.to = c.string("to");
+      spec.key_path = c.path();
+      if (!scene.find_participant(spec.from)) c.child("from").fail("expected the name of a participant of this scene, got '" + spec.from + "'");
+      if (!scene.find_participant(spec.to)) c.child("to").fail("expected the name of a participant of this scene, got '" + spec.to + "'");
+      if (spec.from == spec.to) c.child("to").fail("expected another participant than 'from'");
+      if (c.has("order"))
+        spec.order = c.choice("order", {"jacobi", "gauss_seidel"}) == "jacobi" ? EdgeOrder::jacobi : EdgeOrder::gauss_seidel;
+      if (c.has("reconstruction"))
+        spec.reconstruction = c.choice("reconstruction", {"hold", "linear"}) == "hold" ? Reconstruction::hold : Reconstruction::linear;
+      for (const auto& other : scene.connections)
+        if (other.from == spec.from && other.to == spec.to) c.fail("expected each from -> to pair once (duplicate of " + other.key_path + ")");
+      scene.connections.push_back(spec);
+    }
+  }
+
+  if (auto cmp = root.optional_child("compare")) {
+    if (!cmp->is_sequence()) cmp->fail("expected a list of signals 'participant.output'");
+    for (std::size_t i = 0; i < cmp->size(); ++i) {
+      ConfigNode s = cmp->at(i);
+      SignalRef ref = parse_signal_ref(s, s.as_string());
+      if (!scene.find_participant(ref.participant)) s.fail("expected a participant of this scene in '" + ref.full_name() + "'");
+      scene.compare.push_back(ref);
+    }
+  }
+
+  if (auto rep = root.optional_child("report")) {
+    if (!rep->is_sequence()) rep->fail("expected a list of {min|max: signal, at: signal, unit: ...}");
+    for (std::size_t i = 0; i < rep->size(); ++i) {
+      ConfigNode r = rep->at(i);
+      r.allow_only({"min", "max", "at", "unit"});
+      ReportSpec spec;
+      if (r.has("min") == r.has("max")) r.fail("expected exactly one of 'min' or 'max'");
+      spec.stat = r.has("min") ? "min" : "max";
+      spec.signal = parse_signal_ref(r.child(spec.stat), r.string(spec.stat));
+      if (r.has("at")) spec.at = parse_signal_ref(r.child("at"), r.string("at"));
+      if (r.has("unit")) {
+        spec.at_unit = r.string("unit");
+        spec.at_scale = parse_quantity("1 " + spec.at_unit).value_si;
+        spec.at_wrap_turn = spec.at_unit == "deg";
+      }
+      for (const SignalRef* ref : {&spec.signal, spec.at ? &*spec.at : nullptr})
+        if (ref && !scene.find_participant(ref->participant))
+          r.fail("expected a participant of this scene in '" + ref->full_name() + "'");
+      scene.report.push_back(spec);
+    }
+  }
+  return scene;
+}
+
+std::string scene_to_yaml(const Scene& scene) { return scene.root.to_yaml(); }
+
+}  // namespace mechsim::config

@@ -1,0 +1,44 @@
+// The node types a scene may name (cam_shaft, follower, ...): for each, how its
+// `params:` become a block, which topic type it publishes, and which topic types it can
+// subscribe to with the mapping of topic fields onto its block inputs.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "mechsim/config/config_node.h"
+#include "mechsim/models/block.h"
+#include "mechsim/transport/topic_types.h"
+
+namespace mechsim::cosim {
+
+// Accepting a topic type as input: field name -> block input name.
+struct InputGroup {
+  const transport::TopicType* topic_type;
+  std::vector<std::pair<std::string, std::string>> field_to_input;
+};
+
+struct NodeType {
+  std::string name;                       // "cam_shaft"
+  std::string summary;                    // one line for --help and docs
+  const transport::TopicType* publishes;  // its state topic type
+  std::string topic_suffix;               // topic = "<instance>/<suffix>"
+  // Parses and validates params (throws config::ConfigError) and builds the block. The
+  // block's outputs named like the topic fields are published.
+  std::function<std::unique_ptr<models::Block>(const config::ConfigNode& params)> make_block;
+  std::vector<InputGroup> accepts;
+
+  const InputGroup* group_for(const transport::TopicType& t) const;
+};
+
+const std::vector<NodeType>& node_types();
+const NodeType* find_node_type(const std::string& name);
+
+// Registration of each node type lives in src/node_types/<type>.cpp.
+NodeType cam_shaft_node_type();
+NodeType follower_node_type();
+
+}  // namespace mechsim::cosim

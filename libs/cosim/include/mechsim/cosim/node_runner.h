@@ -1,0 +1,27 @@
+// The transport loop of one node process: readiness, the start command, then the lock-step
+// protocol of NodeStepper over the transport seam, with status heartbeats to the launcher.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <string>
+
+#include "mechsim/cosim/scene_plan.h"
+#include "mechsim/transport/participant.h"
+
+namespace mechsim::cosim {
+
+struct NodeRunOptions {
+  std::string run_dir;              // where <node>.outputs.bin goes ("" = no output log)
+  std::uint64_t run_id = 0;
+  double heartbeat_s = 0.1;         // status period while waiting or stepping
+  double start_timeout_s = 120.0;   // give up when no start command arrives
+  const std::atomic<bool>* stop_requested = nullptr;  // set by the node's signal handler
+};
+
+// Runs the node to the end of the scene. Returns the process exit code: 0 done, 1 failed,
+// 3 aborted by the launcher or a signal. Errors are reported on mechsim/status and stderr.
+int run_node(ScenePlan& plan, const std::string& node_name, transport::Participant& participant,
+             const NodeRunOptions& options);
+
+}  // namespace mechsim::cosim

@@ -1,0 +1,59 @@
+// The lock-step protocol of one node, without transport: holds the node's block, its
+// integrator and one InputChannel per inbound edge, and advances k -> k+1 when the
+// channels hold what the step needs. The transport loop (NodeRunner) feeds the channels
+// and publishes what step() returns; tests drive two steppers by hand.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "mechsim/cosim/input_channel.h"
+#include "mechsim/cosim/scene_plan.h"
+#include "mechsim/solve/block_integrator.h"
+
+namespace mechsim::cosim {
+
+solve::SolverOptions solver_options(const config::SolverSpec& spec);
+
+class NodeStepper {
+ public:
+  // `node` must outlive the stepper (it owns the block).
+  NodeStepper(PlannedNode& node, const config::TimeSpec& time);
+
+  InputChannel& channel(std::size_t edge) { return channels_[edge]; }
+  std::size_t channel_count() const { return channels_.size(); }
+
+  // Step index of the outputs published last (after initialise(): 0).
+  std::uint64_t step() const { return k_; }
+  double time() const;
+  bool finished() const { return initialised_ && k_ >= n_steps_; }
+
+  bool can_initialise() const;
+  // Computes the step-0 outputs. `topic_values` receives the published fields.
+  void initialise(std::vector<double>& topic_values);
+  bool can_step() const;
+  // Integrates over [t_k, t_k+1] and computes the step-(k+1) outputs.
+  void step(std::vector<double>& topic_values);
+
+  // All block outputs at the current step (for the run folder), and solver statistics.
+  const std::vector<double>& outputs() const { return y_; }
+  const solve::SolverStats* solver_stats() const { return integrator_ ? &integrator_->stats() : nullptr; }
+  std::vector<solve::EventRecord> take_events();
+
+ private:
+  void inputs_at(double t, std::uint64_t k, std::span<double> u);
+  void initial_inputs(std::span<double> u);
+  void publishable(std::vector<double>& topic_values) const;
+
+  PlannedNode& node_;
+  double t0_, h_;
+  std::uint64_t n_steps_;
+  std::vector<InputChannel> channels_;
+  std::unique_ptr<solve::BlockIntegrator> integrator_;
+  std::vector<double> defaults_, u_, y_, x_, scratch_;
+  std::uint64_t k_ = 0;
+  bool initialised_ = false;
+};
+
+}  // namespace mechsim::cosim

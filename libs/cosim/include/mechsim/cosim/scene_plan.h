@@ -1,0 +1,56 @@
+// A scene resolved against the node catalog: every participant's block built from its
+// params, its topic, and its inbound edges with the field -> input mapping. Building the
+// plan is the validation a launch does before any process starts: unknown node types,
+// connections between types that cannot talk, unconnected required inputs, cycles of
+// Gauss-Seidel edges and algebraic loops are refused with the file and key path.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "mechsim/config/scene.h"
+#include "mechsim/cosim/catalog.h"
+
+namespace mechsim::cosim {
+
+struct InboundEdge {
+  std::string from;                         // publishing participant
+  std::string topic;                        // its topic name
+  const transport::TopicType* type = nullptr;
+  std::vector<std::pair<int, int>> field_to_input;  // (topic field index, block input index)
+  config::EdgeOrder order = config::EdgeOrder::jacobi;
+  config::Reconstruction reconstruction = config::Reconstruction::hold;
+};
+
+struct PlannedNode {
+  const config::ParticipantSpec* spec = nullptr;
+  const NodeType* type = nullptr;
+  std::unique_ptr<models::Block> block;
+  std::string topic;                    // "<name>/<suffix>"
+  std::vector<int> published_outputs;   // block output index of each topic field
+  std::vector<InboundEdge> inputs;
+  int subscriber_count = 0;             // participants that read `topic`
+  const std::string& name() const { return spec->name; }
+};
+
+class ScenePlan {
+ public:
+  // Throws config::ConfigError.
+  static ScenePlan build(const config::Scene& scene);
+
+  const config::Scene& scene() const { return *scene_; }
+  std::vector<PlannedNode>& nodes() { return nodes_; }
+  const std::vector<PlannedNode>& nodes() const { return nodes_; }
+  const PlannedNode& node(const std::string& name) const;
+  PlannedNode& node(const std::string& name);
+  // (node index, output index) of a compared signal; throws ConfigError if unknown.
+  std::pair<int, int> resolve(const config::SignalRef& ref) const;
+
+ private:
+  const config::Scene* scene_ = nullptr;
+  std::vector<PlannedNode> nodes_;
+};
+
+}  // namespace mechsim::cosim

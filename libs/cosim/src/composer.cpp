@@ -1,0 +1,176 @@
+#include "mechsim/cosim/composer.h"
+
+#include <chrono>
+#include <functional>
+#include <stdexcept>
+
+namespace mechsim::cosim {
+
+CompositeBlock::CompositeBlock(ScenePlan& plan) : Block("composite"), plan_(plan) {
+  auto& nodes = plan.nodes();
+  const std::size_t n = nodes.size();
+  state_base_.assign(1, 0);
+  output_base_.assign(1, 0);
+  event_base_.assign(1, 0);
+  for (auto& node : nodes) {
+    if (node.block->sample_time() > 0)
+      throw std::runtime_error("the composer does not handle sampled blocks yet (" + node.name() + ")");
+    for (const auto& s : node.block->state_names()) declare_state(node.name() + "." + s, "");
+    for (const auto& o : node.block->outputs()) declare_output(node.name() + "." + o.name, o.unit);
+    state_base_.push_back(state_base_.back() + node.block->num_states());
+    output_base_.push_back(output_base_.back() + node.block->num_outputs());
+    event_base_.push_back(event_base_.back() + node.block->num_event_functions());
+    u_.push_back(node.block->default_inputs());
+    y_.emplace_back(node.block->num_outputs(), 0.0);
+  }
+  auto index_of = [&](const std::string& name) {
+    for (std::size_t i = 0; i < n; ++i)
+      if (nodes[i].name() == name) return static_cast<int>(i);
+    throw std::logic_error("unknown participant " + name);
+  };
+  wires_.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+    for (const auto& edge : nodes[i].inputs) {
+      int src = index_of(edge.from);
+      for (const auto& [field, input] : edge.field_to_input)
+        wires_[i].push_back({input, src, nodes[src].published_outputs[field]});
+    }
+
+  // Sweeps needed: the longest chain of outputs linked by feedthrough (the plan refused
+  // cycles), counted in blocks visited; each sweep evaluates every block once in order.
+  std::vector<std::vector<int>> feeds(output_base_.back());  // composite output -> dependent outputs
+  for (std::size_t i = 0; i < n; ++i)
+    for (const auto& w : wires_[i])
+      for (int o = 0; o < nodes[i].block->num_outputs(); ++o)
+        for (int ft : nodes[i].block->outputs()[o].feedthrough)
+          if (ft == w.input) feeds[output_base_[w.source_block] + w.source_output].push_back(output_base_[i] + o);
+  std::vector<int> depth(feeds.size(), 0);
+  std::function<int(int)> longest = [&](int v) {
+    if (depth[v]) return depth[v];
+    int d = 1;
+    for (int w : feeds[v]) d = std::max(d, 1 + longest(w));
+    return depth[v] = d;
+  };
+  for (std::size_t v = 0; v < feeds.size(); ++v) passes_ = std::max(passes_, longest(static_cast<int>(v)));
+}
+
+std::span<const double> CompositeBlock::block_state(std::span<const double> x, std::size_t i) const {
+  return x.subspan(state_base_[i], state_base_[i + 1] - state_base_[i]);
+}
+
+void CompositeBlock::evaluate(double t, std::span<const double> x) const {
+  auto& nodes = plan_.nodes();
+  for (int pass = 0; pass < passes_; ++pass)
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+      for (const auto& w : wires_[i]) u_[i][w.input] = y_[w.source_block][w.source_output];
+      nodes[i].block->calc_outputs(t, block_state(x, i), u_[i], y_[i]);
+    }
+}
+
+void CompositeBlock::initial_state(double t0, std::span<double> x) const {
+  auto& nodes = plan_.nodes();
+  for (std::size_t i = 0; i < nodes.size(); ++i)
+    nodes[i].block->initial_state(t0, x.subspan(state_base_[i], state_base_[i + 1] - state_base_[i]));
+}
+
+void CompositeBlock::derivatives(double t, std::span<const double> x, std::span<const double>,
+                                 std::span<double> dxdt) const {
+  evaluate(t, x);
+  auto& nodes = plan_.nodes();
+  for (std::size_t i = 0; i < nodes.size(); ++i)
+    nodes[i].block->derivatives(t, block_state(x, i), u_[i],
+                                dxdt.subspan(state_base_[i], state_base_[i + 1] - state_base_[i]));
+}
+
+void CompositeBlock::calc_outputs(double t, std::span<const double> x, std::span<const double>,
+                                  std::span<double> y) const {
+  evaluate(t, x);
+  for (std::size_t i = 0; i < y_.size(); ++i) std::copy(y_[i].begin(), y_[i].end(), y.begin() + output_base_[i]);
+}
+
+models::Crossing CompositeBlock::event_direction(int index) const {
+  std::size_t i = 0;
+  while (event_base_[i + 1] <= index) ++i;
+  return plan_.nodes()[i].block->event_direction(index - event_base_[i]);
+}
+
+void CompositeBlock::event_functions(double t, std::span<const double> x, std::span<const double>,
+                                     std::span<double> g) const {
+  evaluate(t, x);
+  auto& nodes = plan_.nodes();
+  for (std::size_t i = 0; i < nodes.size(); ++i)
+    nodes[i].block->event_functions(t, block_state(x, i), u_[i],
+                                    g.subspan(event_base_[i], event_base_[i + 1] - event_base_[i]));
+}
+
+bool CompositeBlock::handle_events(double t, std::span<double> x, std::span<const double>,
+                                   std::span<const int> crossed) {
+  evaluate(t, x);
+  bool changed = false;
+  auto& nodes = plan_.nodes();
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    auto c = crossed.subspan(event_base_[i], event_base_[i + 1] - event_base_[i]);
+    bool any = false;
+    for (int v : c) any = any || v != 0;
+    if (any)
+      changed = nodes[i].block->handle_events(t, x.subspan(state_base_[i], state_base_[i + 1] - state_base_[i]),
+                                              u_[i], c) || changed;
+  }
+  return changed;
+}
+
+std::vector<double> CompositeBlock::save_discrete_state() const {
+  std::vector<double> all;
+  for (const auto& node : plan_.nodes()) {
+    auto s = node.block->save_discrete_state();
+    all.push_back(static_cast<double>(s.size()));
+    all.insert(all.end(), s.begin(), s.end());
+  }
+  return all;
+}
+
+void CompositeBlock::restore_discrete_state(std::span<const double> saved) {
+  std::size_t pos = 0;
+  for (auto& node : plan_.nodes()) {
+    auto len = static_cast<std::size_t>(saved[pos++]);
+    node.block->restore_discrete_state(saved.subspan(pos, len));
+    pos += len;
+  }
+}
+
+ReferenceRun run_reference(ScenePlan& plan, double rtol, double atol) {
+  const auto started = std::chrono::steady_clock::now();
+  const config::TimeSpec& time = plan.scene().time;
+  CompositeBlock composite(plan);
+  std::vector<double> x(composite.num_states()), y(composite.num_outputs());
+  composite.initial_state(time.start, x);
+  solve::SolverOptions options;
+  options.rtol = rtol;
+  options.atol = atol;
+  solve::BlockIntegrator integrator(composite, options, time.start, x);
+
+  ReferenceRun run;
+  run.rtol = rtol;
+  run.log.columns.push_back("t");
+  for (const auto& o : composite.outputs()) run.log.columns.push_back(o.name);
+  run.log.data.resize(run.log.columns.size());
+  const long n = time.steps();
+  for (auto& column : run.log.data) column.reserve(n + 1);
+  auto sample = [&](double t) {
+    composite.calc_outputs(t, integrator.state(), {}, y);
+    run.log.data[0].push_back(t);
+    for (std::size_t j = 0; j < y.size(); ++j) run.log.data[j + 1].push_back(y[j]);
+  };
+  sample(time.start);
+  const solve::InputFunction no_inputs = [](double, std::span<double>) {};
+  for (long k = 1; k <= n; ++k) {
+    const double t = time.start + static_cast<double>(k) * time.step;
+    integrator.advance_to(t, no_inputs);
+    sample(t);
+  }
+  run.stats = integrator.stats();
+  run.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return run;
+}
+
+}  // namespace mechsim::cosim

@@ -1,0 +1,86 @@
+#include "mechsim/cosim/input_channel.h"
+
+#include <stdexcept>
+
+namespace mechsim::cosim {
+
+InputChannel::InputChannel(config::EdgeOrder order, config::Reconstruction reconstruction, double t0, double step)
+    : order_(order), reconstruction_(reconstruction), t0_(t0), step_(step) {}
+
+void InputChannel::add(std::uint64_t step, std::vector<double> values) {
+  samples_.emplace(step, std::move(values));
+}
+
+const std::vector<double>* InputChannel::find(std::uint64_t step) const {
+  auto it = samples_.find(step);
+  return it == samples_.end() ? nullptr : &it->second;
+}
+
+bool InputChannel::ready_for_step(std::uint64_t k) const {
+  return find(order_ == config::EdgeOrder::gauss_seidel ? k + 1 : k) != nullptr;
+}
+
+bool InputChannel::ready_for_initial() const {
+  return order_ == config::EdgeOrder::jacobi || find(0) != nullptr;
+}
+
+void InputChannel::values_at(double t, std::uint64_t k, std::vector<double>& out) const {
+  // The fraction of the step comes from the step index, not from accumulated time, so
+  // every node reconstructs bit-identically whatever the timing.
+  const double s = (t - (t0_ + static_cast<double>(k) * step_)) / step_;
+  const std::vector<double>* now = find(k);
+  if (order_ == config::EdgeOrder::gauss_seidel) {
+    const std::vector<double>* next = find(k + 1);
+    if (!next || !now) throw std::logic_error("Gauss-Seidel input reconstructed without its samples");
+    if (s >= 1.0) {
+      out = *next;
+      return;
+    }
+    out.resize(now->size());
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] = (*now)[i] + s * ((*next)[i] - (*now)[i]);
+    return;
+  }
+  if (!now) throw std::logic_error("Jacobi input reconstructed without its step-k sample");
+  const std::vector<double>* before = k > 0 ? find(k - 1) : nullptr;
+  if (reconstruction_ == config::Reconstruction::hold || !before) {
+    out = *now;
+    return;
+  }
+  out.resize(now->size());
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = (*now)[i] + s * ((*now)[i] - (*before)[i]);
+}
+
+void InputChannel::values_at_step_end(std::uint64_t k, std::vector<double>& out) const {
+  const std::vector<double>* now = find(k);
+  const std::vector<double>* next = order_ == config::EdgeOrder::gauss_seidel ? find(k + 1) : nullptr;
+  const std::vector<double>* before = k > 0 ? find(k - 1) : nullptr;
+  if (order_ == config::EdgeOrder::gauss_seidel) {
+    if (!next) throw std::logic_error("Gauss-Seidel input reconstructed without its samples");
+    out = *next;
+  } else if (!now) {
+    throw std::logic_error("Jacobi input reconstructed without its step-k sample");
+  } else if (reconstruction_ == config::Reconstruction::hold || !before) {
+    out = *now;
+  } else {
+    out.resize(now->size());
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] = (*now)[i] + ((*now)[i] - (*before)[i]);
+  }
+}
+
+void InputChannel::initial_values_at(std::vector<double>& out) const {
+  if (order_ == config::EdgeOrder::gauss_seidel) {
+    const std::vector<double>* first = find(0);
+    if (!first) throw std::logic_error("Gauss-Seidel initial input without the step-0 sample");
+    out = *first;
+  } else {
+    out = initial_;
+  }
+}
+
+void InputChannel::discard_before(std::uint64_t k) {
+  // Linear extrapolation at step k needs k-1; keep one more for safety.
+  std::uint64_t keep_from = k >= 2 ? k - 2 : 0;
+  samples_.erase(samples_.begin(), samples_.lower_bound(keep_from));
+}
+
+}  // namespace mechsim::cosim

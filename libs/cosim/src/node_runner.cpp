@@ -1,0 +1,181 @@
+#include "mechsim/cosim/node_runner.h"
+
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <stdexcept>
+
+#include "mechsim/cosim/node_stepper.h"
+#include "mechsim/cosim/output_log.h"
+
+namespace mechsim::cosim {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+class Heartbeat {
+ public:
+  Heartbeat(transport::StatusWriter& writer, std::string node, std::uint64_t run_id, double period_s)
+      : writer_(writer), period_(period_s), started_(Clock::now()) {
+    status_.node = std::move(node);
+    status_.header.run_id = run_id;
+  }
+  double elapsed() const { return std::chrono::duration<double>(Clock::now() - started_).count(); }
+  transport::StatusMessage& status() { return status_; }
+  void set_state(transport::NodeState s) {
+    status_.state = s;
+    send();
+  }
+  // Sends when the period has passed since the last one.
+  void tick() {
+    if (Clock::now() >= next_) send();
+  }
+  void send() {
+    status_.wall_time = elapsed();
+    writer_.write(status_);
+    next_ = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(period_));
+  }
+  std::chrono::nanoseconds until_next() const {
+    auto d = next_ - Clock::now();
+    return d.count() > 0 ? std::chrono::duration_cast<std::chrono::nanoseconds>(d) : std::chrono::nanoseconds(0);
+  }
+
+ private:
+  transport::StatusWriter& writer_;
+  double period_;
+  Clock::time_point started_;
+  Clock::time_point next_{};
+  transport::StatusMessage status_;
+};
+
+void copy_stats(const solve::SolverStats* s, transport::StatusMessage& m) {
+  if (!s) return;
+  m.solver_steps = s->steps;
+  m.rhs_evals = s->rhs_evals;
+  m.error_test_failures = s->error_test_failures;
+  m.nonlinear_failures = s->nonlinear_failures;
+  m.roots_found = s->roots_found;
+  m.last_step_size = s->last_step;
+  m.last_order = s->last_order;
+}
+
+}  // namespace
+
+int run_node(ScenePlan& plan, const std::string& node_name, transport::Participant& participant,
+             const NodeRunOptions& options) {
+  PlannedNode& node = plan.node(node_name);
+  const config::Scene& scene = plan.scene();
+  auto status_writer = participant.create_status_writer();
+  Heartbeat beat(*status_writer, node_name, options.run_id, options.heartbeat_s);
+  auto stop_requested = [&] { return options.stop_requested && options.stop_requested->load(); };
+
+  try {
+    beat.set_state(transport::NodeState::starting);
+    auto control = participant.create_control_reader();
+    auto writer = participant.create_writer(node.topic, *node.type->publishes);
+    std::vector<std::unique_ptr<transport::SampleReader>> readers;
+    for (const auto& edge : node.inputs) readers.push_back(participant.create_reader(edge.topic, *edge.type));
+
+    NodeStepper stepper(node, scene.time);
+    std::unique_ptr<OutputLogWriter> log;
+    if (!options.run_dir.empty()) {
+      std::vector<std::string> columns;
+      for (const auto& o : node.block->outputs()) columns.push_back(o.name);
+      log = std::make_unique<OutputLogWriter>(options.run_dir + "/" + node_name + ".outputs.bin", columns);
+    }
+
+    // Ready means matched both ways with every partner (see docs/protocol.md: a match seen
+    // by only one side can lose the first sample), then wait for the start command.
+    auto matched = [&] {
+      if (writer->matched_readers() < node.subscriber_count) return false;
+      for (const auto& r : readers)
+        if (r->matched_writers() < 1) return false;
+      return true;
+    };
+    bool ready = false, started = false;
+    const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                             std::chrono::duration<double>(options.start_timeout_s));
+    while (!started) {
+      if (stop_requested()) return 3;
+      if (Clock::now() > deadline) throw std::runtime_error("no start command within the start timeout");
+      if (!ready && matched()) {
+        ready = true;
+        beat.set_state(transport::NodeState::ready);
+      }
+      while (auto c = control->take()) {
+        if (c->run_id != options.run_id) continue;  // a stale command of another run
+        if (c->command == transport::ControlCommand::abort || c->command == transport::ControlCommand::stop) return 3;
+        if (c->command == transport::ControlCommand::start) started = ready;
+        if (c->command == transport::ControlCommand::start && !ready)
+          throw std::runtime_error("start command before this node was matched with its partners");
+      }
+      beat.tick();
+      if (!started) participant.wait(std::min(beat.until_next(), std::chrono::nanoseconds(20'000'000)));
+    }
+    beat.set_state(transport::NodeState::running);
+
+    transport::SampleHeader header{options.run_id, 0, scene.time.start};
+    std::vector<double> values, received;
+    auto drain = [&] {
+      for (std::size_t e = 0; e < readers.size(); ++e) {
+        transport::SampleHeader h;
+        while (readers[e]->take(h, received))
+          if (h.run_id == options.run_id && h.step + 2 >= stepper.step()) stepper.channel(e).add(h.step, received);
+      }
+    };
+    auto check_control = [&] {
+      while (auto c = control->take())
+        if (c->run_id == options.run_id &&
+            (c->command == transport::ControlCommand::abort || c->command == transport::ControlCommand::stop))
+          return true;
+      return false;
+    };
+    auto publish = [&] {
+      header.step = stepper.step();
+      header.t = stepper.time();
+      writer->write(header, values);
+      if (log) log->append(header.t, stepper.outputs());
+      beat.status().header.step = header.step;
+      beat.status().header.t = header.t;
+    };
+
+    bool initialised = false;
+    for (;;) {
+      drain();
+      if (!initialised && stepper.can_initialise()) {
+        stepper.initialise(values);
+        publish();
+        initialised = true;
+      }
+      while (initialised && stepper.can_step()) {
+        stepper.step(values);
+        publish();
+        for (const auto& ev : stepper.take_events())
+          std::printf("event: t=%.9g function %d direction %+d\n", ev.t, ev.function_index, ev.direction);
+        if (stepper.finished()) break;
+        drain();
+        beat.tick();
+      }
+      if (stepper.finished()) break;
+      if (stop_requested() || check_control()) return 3;
+      copy_stats(stepper.solver_stats(), beat.status());
+      beat.tick();
+      participant.wait(std::min(beat.until_next(), std::chrono::nanoseconds(50'000'000)));
+    }
+    if (log) log->close();
+    writer->flush(std::chrono::seconds(10));
+    copy_stats(stepper.solver_stats(), beat.status());
+    beat.set_state(transport::NodeState::done);
+    std::printf("done: %llu steps, t = %.9g s, %.3f s wall\n", static_cast<unsigned long long>(stepper.step()),
+                stepper.time(), beat.elapsed());
+    return 0;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: error: %s\n", node_name.c_str(), e.what());
+    beat.status().message = e.what();
+    beat.set_state(transport::NodeState::failed);
+    return 1;
+  }
+}
+
+}  // namespace mechsim::cosim

@@ -1,0 +1,183 @@
+#include "mechsim/cosim/scene_plan.h"
+
+#include <functional>
+#include <map>
+#include <set>
+
+namespace mechsim::cosim {
+
+namespace {
+
+[[noreturn]] void refuse(const config::Scene& scene, const std::string& key_path, const std::string& expected) {
+  throw config::ConfigError(scene.file, key_path, expected);
+}
+
+// Depth-first search for a cycle in a directed graph given as adjacency lists; returns the
+// cycle as a list of vertices (empty when acyclic).
+std::vector<int> find_cycle(const std::vector<std::vector<int>>& adjacent) {
+  const int n = static_cast<int>(adjacent.size());
+  std::vector<int> color(n, 0), parent(n, -1);
+  std::vector<int> cycle;
+  std::function<bool(int)> visit = [&](int v) {
+    color[v] = 1;
+    for (int w : adjacent[v]) {
+      if (color[w] == 1) {
+        for (int x = v; x != w; x = parent[x]) cycle.insert(cycle.begin(), x);
+        cycle.insert(cycle.begin(), w);
+        return true;
+      }
+      if (color[w] == 0) {
+        parent[w] = v;
+        if (visit(w)) return true;
+      }
+    }
+    color[v] = 2;
+    return false;
+  };
+  for (int v = 0; v < n; ++v)
+    if (color[v] == 0 && visit(v)) return cycle;
+  return {};
+}
+
+}  // namespace
+
+ScenePlan ScenePlan::build(const config::Scene& scene) {
+  ScenePlan plan;
+  plan.scene_ = &scene;
+  for (const auto& spec : scene.participants) {
+    PlannedNode node;
+    node.spec = &spec;
+    node.type = find_node_type(spec.type);
+    if (!node.type) {
+      std::string known;
+      for (const auto& t : node_types()) known += (known.empty() ? "" : ", ") + t.name;
+      refuse(scene, spec.key_path + ".type", "expected a node type (" + known + "), got '" + spec.type + "'");
+    }
+    node.block = node.type->make_block(spec.params);
+    node.topic = spec.name + "/" + node.type->topic_suffix;
+    for (const auto& field : node.type->publishes->fields) {
+      int out = node.block->output_index(field.name);
+      if (out < 0) throw std::logic_error(spec.type + " block has no output for topic field " + field.name);
+      node.published_outputs.push_back(out);
+    }
+    plan.nodes_.push_back(std::move(node));
+  }
+
+  for (const auto& c : scene.connections) {
+    PlannedNode& from = plan.node(c.from);
+    PlannedNode& to = plan.node(c.to);
+    const InputGroup* group = to.type->group_for(*from.type->publishes);
+    if (!group)
+      refuse(scene, c.key_path, "expected a connection the node types support: a " + to.type->name +
+                                    " cannot read the " + from.type->publishes->idl_name + " of a " + from.type->name);
+    InboundEdge edge;
+    edge.from = c.from;
+    edge.topic = from.topic;
+    edge.type = from.type->publishes;
+    edge.order = c.order;
+    edge.reconstruction = c.reconstruction;
+    for (const auto& [field, input] : group->field_to_input) {
+      int f = edge.type->field_index(field), i = to.block->input_index(input);
+      if (f < 0 || i < 0) throw std::logic_error("catalog maps unknown field/input " + field + " -> " + input);
+      for (const auto& other : to.inputs)
+        for (const auto& [of, oi] : other.field_to_input)
+          if (oi == i) refuse(scene, c.key_path, "expected each input of '" + c.to + "' fed once: input '" + input + "' is already fed by '" + other.from + "'");
+      edge.field_to_input.emplace_back(f, i);
+    }
+    to.inputs.push_back(std::move(edge));
+    ++from.subscriber_count;
+  }
+
+  // Required inputs must be connected.
+  for (const auto& node : plan.nodes_) {
+    for (int i = 0; i < node.block->num_inputs(); ++i) {
+      if (!node.block->inputs()[i].required) continue;
+      bool fed = false;
+      for (const auto& e : node.inputs)
+        for (const auto& fi : e.field_to_input) fed = fed || fi.second == i;
+      if (!fed)
+        refuse(scene, "connections", "expected a connection feeding the required input '" + node.block->inputs()[i].name +
+                                          "' of '" + node.name() + "' (" + node.type->name + ")");
+    }
+  }
+
+  // Gauss-Seidel edges must be ordered without cycles.
+  const int n = static_cast<int>(plan.nodes_.size());
+  auto index_of = [&](const std::string& name) {
+    for (int i = 0; i < n; ++i)
+      if (plan.nodes_[i].name() == name) return i;
+    return -1;
+  };
+  std::vector<std::vector<int>> gs(n);
+  for (int i = 0; i < n; ++i)
+    for (const auto& e : plan.nodes_[i].inputs)
+      if (e.order == config::EdgeOrder::gauss_seidel) gs[index_of(e.from)].push_back(i);
+  if (auto cycle = find_cycle(gs); !cycle.empty()) {
+    std::string names;
+    for (int v : cycle) names += plan.nodes_[v].name() + " -> ";
+    refuse(scene, "connections", "expected Gauss-Seidel edges without cycles; found " + names + plan.nodes_[cycle[0]].name() +
+                                     " (declare one of these edges 'order: jacobi')");
+  }
+
+  // Algebraic loops through direct feedthrough (port level): the monolithic reference
+  // could not evaluate them.
+  std::vector<int> base(n + 1, 0);
+  for (int i = 0; i < n; ++i) base[i + 1] = base[i] + plan.nodes_[i].block->num_outputs();
+  std::vector<std::vector<int>> ports(base[n]);
+  for (int i = 0; i < n; ++i) {
+    const auto& node = plan.nodes_[i];
+    for (const auto& e : node.inputs) {
+      const auto& src = plan.nodes_[index_of(e.from)];
+      int src_index = index_of(e.from);
+      for (const auto& [field, input] : e.field_to_input) {
+        int src_out = src.published_outputs[field];
+        for (int o = 0; o < node.block->num_outputs(); ++o)
+          for (int ft : node.block->outputs()[o].feedthrough)
+            if (ft == input) ports[base[src_index] + src_out].push_back(base[i] + o);
+      }
+    }
+  }
+  if (auto cycle = find_cycle(ports); !cycle.empty()) {
+    std::string names;
+    for (int v : cycle) {
+      int i = 0;
+      while (base[i + 1] <= v) ++i;
+      names += plan.nodes_[i].name() + "." + plan.nodes_[i].block->outputs()[v - base[i]].name + " -> ";
+    }
+    refuse(scene, "connections", "expected no algebraic loop through direct feedthrough; found " + names + "...");
+  }
+
+  for (const auto& s : scene.compare) plan.resolve(s);
+  for (const auto& r : scene.report) {
+    plan.resolve(r.signal);
+    if (r.at) plan.resolve(*r.at);
+  }
+  return plan;
+}
+
+const PlannedNode& ScenePlan::node(const std::string& name) const {
+  for (const auto& n : nodes_)
+    if (n.name() == name) return n;
+  throw std::out_of_range("no participant " + name);
+}
+
+PlannedNode& ScenePlan::node(const std::string& name) {
+  return const_cast<PlannedNode&>(static_cast<const ScenePlan&>(*this).node(name));
+}
+
+std::pair<int, int> ScenePlan::resolve(const config::SignalRef& ref) const {
+  for (std::size_t i = 0; i < nodes_.size(); ++i) {
+    if (nodes_[i].name() != ref.participant) continue;
+    int out = nodes_[i].block->output_index(ref.output);
+    if (out < 0) {
+      std::string known;
+      for (const auto& o : nodes_[i].block->outputs()) known += (known.empty() ? "" : ", ") + o.name;
+      throw config::ConfigError(scene_->file, ref.key_path,
+                                "expected an output of '" + ref.participant + "' (" + known + "), got '" + ref.output + "'");
+    }
+    return {static_cast<int>(i), out};
+  }
+  throw config::ConfigError(scene_->file, ref.key_path, "expected a participant of this scene, got '" + ref.participant + "'");
+}
+
+}  // namespace mechsim::cosim

@@ -1,0 +1,106 @@
+// The one abstraction for every model: a continuous-time block with named ports.
+//
+// A block declares its inputs, outputs and continuous states in its constructor (the
+// constructor is the declaration, as in Drake's LeafSystem) and then only computes:
+//   derivatives(t, x, u) -> dx/dt     calc_outputs(t, x, u) -> y
+// plus, optionally, zero-crossing event functions with a handler (follower lift-off),
+// a sampled (discrete) update, and a discrete "mode" state that is saved with the
+// continuous state for checkpoints.
+//
+// The same block object runs inside a node process (integrated by SUNDIALS between
+// exchanges) and inside the monolithic composer that builds the reference. Blocks never
+// see DDS, YAML or files: parameters arrive as plain structs.
+#pragma once
+
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace mechsim::models {
+
+struct InputPort {
+  std::string name;
+  std::string unit;       // SI unit, for documentation and CSV headers
+  double default_value;   // used when the scene leaves the input unconnected
+  bool required;          // an unconnected required input is refused at launch
+};
+
+struct OutputPort {
+  std::string name;
+  std::string unit;
+  // Inputs (by index) that reach this output without passing through a state: direct
+  // feedthrough. The composer orders output evaluation by it and refuses algebraic loops.
+  std::vector<int> feedthrough;
+};
+
+// Direction of a zero crossing that counts as an event.
+enum class Crossing { any = 0, rising = 1, falling = -1 };
+
+class Block {
+ public:
+  virtual ~Block() = default;
+  Block(const Block&) = delete;
+  Block& operator=(const Block&) = delete;
+
+  const std::string& type_name() const { return type_name_; }
+  const std::vector<InputPort>& inputs() const { return inputs_; }
+  const std::vector<OutputPort>& outputs() const { return outputs_; }
+  const std::vector<std::string>& state_names() const { return state_names_; }
+  int num_inputs() const { return static_cast<int>(inputs_.size()); }
+  int num_outputs() const { return static_cast<int>(outputs_.size()); }
+  int num_states() const { return static_cast<int>(state_names_.size()); }
+  // Index of a port or state by name, -1 when there is none.
+  int input_index(std::string_view name) const;
+  int output_index(std::string_view name) const;
+  int state_index(std::string_view name) const;
+  // Default input vector (every port at its default value).
+  std::vector<double> default_inputs() const;
+
+  // --- continuous part -------------------------------------------------------------
+  // x has num_states() entries, u num_inputs(), y num_outputs().
+  virtual void initial_state(double t0, std::span<double> x) const;
+  virtual void derivatives(double t, std::span<const double> x, std::span<const double> u,
+                           std::span<double> dxdt) const;
+  virtual void calc_outputs(double t, std::span<const double> x, std::span<const double> u,
+                            std::span<double> y) const = 0;
+
+  // --- events (zero crossings found by the integrator's root finding) -------------------
+  virtual int num_event_functions() const { return 0; }
+  virtual Crossing event_direction(int /*index*/) const { return Crossing::any; }
+  virtual void event_functions(double /*t*/, std::span<const double> /*x*/,
+                               std::span<const double> /*u*/, std::span<double> /*g*/) const {}
+  // Called at an event time with crossed[i] = +1 (rising), -1 (falling) or 0. May switch
+  // the block's mode and jump x. Returns true when x or the mode changed, so that the
+  // integrator restarts from the new state.
+  virtual bool handle_events(double /*t*/, std::span<double> /*x*/, std::span<const double> /*u*/,
+                             std::span<const int> /*crossed*/) {
+    return false;
+  }
+
+  // --- sampled part -------------------------------------------------------------------
+  // A sampled block returns its sample time (> 0); discrete_update is then called at
+  // t0 + j * sample_time() before the continuous part is integrated onwards.
+  virtual double sample_time() const { return 0.0; }
+  virtual void discrete_update(double /*t*/, std::span<double> /*x*/, std::span<const double> /*u*/) {}
+
+  // --- checkpoints: the mode / discrete state that is not integrated ------------------
+  virtual std::vector<double> save_discrete_state() const { return {}; }
+  virtual void restore_discrete_state(std::span<const double> /*saved*/) {}
+
+ protected:
+  explicit Block(std::string type_name) : type_name_(std::move(type_name)) {}
+  int declare_input(std::string name, std::string unit, double default_value);
+  int declare_required_input(std::string name, std::string unit);
+  int declare_output(std::string name, std::string unit, std::vector<int> feedthrough = {});
+  int declare_state(std::string name, std::string unit);
+
+ private:
+  std::string type_name_;
+  std::vector<InputPort> inputs_;
+  std::vector<OutputPort> outputs_;
+  std::vector<std::string> state_names_;
+  std::vector<std::string> state_units_;
+};
+
+}  // namespace mechsim::models

@@ -1,0 +1,27 @@
+// The rigid, kinetostatic follower as a block (spec cam.md §3): no states, the forces
+// follow from the lift law published by the cam shaft.
+#pragma once
+
+#include "mechsim/models/block.h"
+#include "mechsim/models/follower/kinetostatics.h"
+
+namespace mechsim::models::follower {
+
+// Inputs (required unless noted): angle, speed, lift, lift_d1, lift_d2, pressure_angle,
+// acceleration (dω/dt, optional, default 0). Outputs: position, velocity, acceleration,
+// contact_force, contact (1 when N ≥ 0), drive_torque, spring_force, load_force,
+// inertia_force; each with feedthrough from the inputs it uses.
+class FollowerBlock : public Block {
+ public:
+  explicit FollowerBlock(FollowerParams params);
+
+  void calc_outputs(double t, std::span<const double> x, std::span<const double> u,
+                    std::span<double> y) const override;
+
+  const FollowerParams& params() const { return params_; }
+
+ private:
+  FollowerParams params_;
+};
+
+}  // namespace mechsim::models::follower

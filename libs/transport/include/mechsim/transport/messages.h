@@ -1,0 +1,46 @@
+// Transport-neutral messages: what node logic and the launcher see instead of DDS types.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace mechsim::transport {
+
+// Carried by every sample: the run it belongs to and the base step it was computed for.
+struct SampleHeader {
+  std::uint64_t run_id = 0;
+  std::uint64_t step = 0;
+  double t = 0.0;
+};
+
+enum class ControlCommand : std::int32_t { none = 0, start = 1, stop = 2, abort = 3 };
+enum class RunMode : std::int32_t { lockstep = 0, realtime = 1 };
+
+struct ControlMessage {
+  std::uint64_t run_id = 0;
+  ControlCommand command = ControlCommand::none;
+  double end_time = 0.0;
+  double macro_step = 0.0;
+  RunMode mode = RunMode::lockstep;
+  double rtf = 1.0;
+};
+
+enum class NodeState : std::int32_t { starting = 0, ready = 1, running = 2, done = 3, failed = 4 };
+const char* to_string(NodeState s);
+
+struct StatusMessage {
+  SampleHeader header;  // step and t of the last published step
+  std::string node;     // instance name (at most 64 characters on the wire)
+  NodeState state = NodeState::starting;
+  double wall_time = 0.0;  // s since the node process started
+  std::int64_t solver_steps = 0;
+  std::int64_t rhs_evals = 0;
+  std::int64_t error_test_failures = 0;
+  std::int64_t nonlinear_failures = 0;
+  std::int64_t roots_found = 0;
+  double last_step_size = 0.0;
+  std::int32_t last_order = 0;
+  std::string message;  // last error (at most 256 characters on the wire)
+};
+
+}  // namespace mechsim::transport

@@ -1,0 +1,84 @@
+// The transport seam. One Participant per process; node logic and the launcher use only
+// these interfaces, never DDS types. Backends: cyclone (DDS, default) — see backends.h.
+//
+// QoS contract every backend honours (docs/dds.md):
+//  - data topics: RELIABLE, KEEP_ALL on writer and reader (no step is ever overwritten
+//    unread; a writer blocks when its history is full), VOLATILE;
+//  - mechsim/control: RELIABLE, TRANSIENT_LOCAL, KEEP_LAST 1 (a late joiner sees the last
+//    command);
+//  - mechsim/status: BEST_EFFORT, KEEP_LAST (a heartbeat: losing one is harmless).
+#pragma once
+
+#include <chrono>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "mechsim/transport/messages.h"
+#include "mechsim/transport/topic_types.h"
+
+namespace mechsim::transport {
+
+class SampleWriter {
+ public:
+  virtual ~SampleWriter() = default;
+  // values: one per field of the topic type, in field order.
+  virtual void write(const SampleHeader& header, std::span<const double> values) = 0;
+  virtual int matched_readers() const = 0;
+  // Waits until every matched reader acknowledged what was written (before a node exits).
+  virtual void flush(std::chrono::nanoseconds timeout) = 0;
+};
+
+class SampleReader {
+ public:
+  virtual ~SampleReader() = default;
+  // Takes the next sample if there is one (values resized to the field count).
+  virtual bool take(SampleHeader& header, std::vector<double>& values) = 0;
+  virtual int matched_writers() const = 0;
+};
+
+class ControlWriter {
+ public:
+  virtual ~ControlWriter() = default;
+  virtual void write(const ControlMessage& message) = 0;
+  virtual int matched_readers() const = 0;
+};
+
+class ControlReader {
+ public:
+  virtual ~ControlReader() = default;
+  virtual std::optional<ControlMessage> take() = 0;
+};
+
+class StatusWriter {
+ public:
+  virtual ~StatusWriter() = default;
+  virtual void write(const StatusMessage& message) = 0;
+};
+
+class StatusReader {
+ public:
+  virtual ~StatusReader() = default;
+  virtual std::optional<StatusMessage> take() = 0;
+};
+
+class Participant {
+ public:
+  virtual ~Participant() = default;
+  virtual std::unique_ptr<SampleWriter> create_writer(const std::string& topic, const TopicType& type) = 0;
+  virtual std::unique_ptr<SampleReader> create_reader(const std::string& topic, const TopicType& type) = 0;
+  virtual std::unique_ptr<ControlWriter> create_control_writer() = 0;
+  virtual std::unique_ptr<ControlReader> create_control_reader() = 0;
+  virtual std::unique_ptr<StatusWriter> create_status_writer() = 0;
+  virtual std::unique_ptr<StatusReader> create_status_reader() = 0;
+  // Blocks until any reader created by this participant may have data, wake() is called,
+  // or the timeout passes. Returns false on timeout. Spurious wake-ups are allowed.
+  virtual bool wait(std::chrono::nanoseconds timeout) = 0;
+  // Interrupts wait() (safe to call from another thread).
+  virtual void wake() = 0;
+  virtual std::string vendor() const = 0;
+};
+
+}  // namespace mechsim::transport

@@ -1,0 +1,35 @@
+// The data topic types of idl/*.idl as seen by node logic: a header plus a flat list of
+// scalar fields, each carried as a double on the block side (booleans as 0/1). The field
+// lists here mirror the IDL in order; tests/unit/transport checks them against the .idl
+// files so the two cannot drift apart.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace mechsim::transport {
+
+enum class FieldKind { f64, boolean };
+
+struct FieldInfo {
+  std::string name;
+  FieldKind kind;
+};
+
+struct TopicType {
+  std::string idl_name;   // fully scoped IDL name, e.g. "mechsim::msg::CamState"
+  std::string idl_file;   // file under idl/, e.g. "cam.idl"
+  std::vector<FieldInfo> fields;
+  int field_index(std::string_view name) const;  // -1 when absent
+};
+
+// All data topic types, and lookup by the short name used in code ("CamState").
+const std::vector<const TopicType*>& all_topic_types();
+const TopicType* find_topic_type(std::string_view short_or_scoped_name);
+
+// Fixed topic names.
+inline constexpr const char* kControlTopic = "mechsim/control";
+inline constexpr const char* kStatusTopic = "mechsim/status";
+
+}  // namespace mechsim::transport

@@ -1,0 +1,28 @@
+#include "mechsim/transport/backends.h"
+
+#include <stdexcept>
+
+#ifdef MECHSIM_HAVE_CYCLONEDDS
+#include "cyclone/cyclone_participant.h"
+#endif
+
+namespace mechsim::transport {
+
+std::vector<std::string> available_vendors() {
+  std::vector<std::string> v;
+#ifdef MECHSIM_HAVE_CYCLONEDDS
+  v.push_back("cyclone");
+#endif
+  return v;
+}
+
+std::unique_ptr<Participant> create_participant(const std::string& vendor, int domain_id) {
+#ifdef MECHSIM_HAVE_CYCLONEDDS
+  if (vendor == "cyclone") return std::make_unique<cyclone::CycloneParticipant>(domain_id);
+#endif
+  if (vendor == "fastdds")
+    throw std::runtime_error("DDS vendor 'fastdds' is not available in this build (the Fast DDS backend is not implemented yet)");
+  throw std::runtime_error("DDS vendor '" + vendor + "' is not compiled into this build");
+}
+
+}  // namespace mechsim::transport

@@ -1,0 +1,317 @@
+// Cyclone DDS (C API) backend of the transport seam.
+#include "cyclone_participant.h"
+
+#include <algorithm>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+
+#include "control.h"
+#include "cyclone_types.h"
+#include "status.h"
+
+namespace mechsim::transport::cyclone {
+
+namespace {
+
+[[noreturn]] void fail(const std::string& what, dds_return_t rc) {
+  throw std::runtime_error("Cyclone DDS: " + what + ": " + dds_strretcode(rc));
+}
+
+dds_entity_t check(dds_entity_t e, const std::string& what) {
+  if (e < 0) fail(what, e);
+  return e;
+}
+
+// RAII for dds_qos_t.
+struct Qos {
+  dds_qos_t* q = dds_create_qos();
+  ~Qos() { dds_delete_qos(q); }
+};
+
+Qos data_qos() {
+  Qos qos;
+  dds_qset_reliability(qos.q, DDS_RELIABILITY_RELIABLE, DDS_SECS(30));
+  dds_qset_history(qos.q, DDS_HISTORY_KEEP_ALL, 0);
+  dds_qset_durability(qos.q, DDS_DURABILITY_VOLATILE);
+  return qos;
+}
+
+Qos control_qos() {
+  Qos qos;
+  dds_qset_reliability(qos.q, DDS_RELIABILITY_RELIABLE, DDS_SECS(10));
+  dds_qset_history(qos.q, DDS_HISTORY_KEEP_LAST, 1);
+  dds_qset_durability(qos.q, DDS_DURABILITY_TRANSIENT_LOCAL);
+  return qos;
+}
+
+Qos status_qos() {
+  Qos qos;
+  dds_qset_reliability(qos.q, DDS_RELIABILITY_BEST_EFFORT, 0);
+  dds_qset_history(qos.q, DDS_HISTORY_KEEP_LAST, 256);
+  return qos;
+}
+
+void copy_bounded(char* dst, std::size_t capacity, const std::string& src) {
+  std::size_t n = std::min(src.size(), capacity - 1);
+  std::memcpy(dst, src.data(), n);
+  dst[n] = '\0';
+}
+
+int publication_matched(dds_entity_t writer) {
+  dds_publication_matched_status_t st{};
+  return dds_get_publication_matched_status(writer, &st) == DDS_RETCODE_OK ? static_cast<int>(st.current_count) : 0;
+}
+
+int subscription_matched(dds_entity_t reader) {
+  dds_subscription_matched_status_t st{};
+  return dds_get_subscription_matched_status(reader, &st) == DDS_RETCODE_OK ? static_cast<int>(st.current_count) : 0;
+}
+
+// Takes one sample into `buffer` (a zeroed struct of the topic type); skips invalid
+// samples (disposal/unregistration notices). Returns false when none is left.
+bool take_one(dds_entity_t reader, void* buffer) {
+  for (;;) {
+    void* samples[1] = {buffer};
+    dds_sample_info_t info;
+    dds_return_t n = dds_take(reader, samples, &info, 1, 1);
+    if (n < 0) fail("take", n);
+    if (n == 0) return false;
+    if (info.valid_data) return true;
+  }
+}
+
+class CycloneSampleWriter final : public SampleWriter {
+ public:
+  CycloneSampleWriter(dds_entity_t writer, const CycloneType& type)
+      : writer_(writer), type_(type), buffer_(type.size, 0) {}
+  ~CycloneSampleWriter() override { dds_delete(writer_); }
+  void write(const SampleHeader& header, std::span<const double> values) override {
+    if (values.size() != type_.slots.size())
+      throw std::logic_error("write " + type_.type->idl_name + ": wrong number of values");
+    auto* h = reinterpret_cast<mechsim_msg_Header*>(buffer_.data());
+    h->run_id = header.run_id;
+    h->step = header.step;
+    h->t = header.t;
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      char* p = buffer_.data() + type_.slots[i].offset;
+      if (type_.slots[i].kind == FieldKind::f64)
+        std::memcpy(p, &values[i], sizeof(double));
+      else
+        *reinterpret_cast<bool*>(p) = values[i] != 0.0;
+    }
+    dds_return_t rc = dds_write(writer_, buffer_.data());
+    if (rc != DDS_RETCODE_OK) fail("write " + type_.type->idl_name, rc);
+  }
+  int matched_readers() const override { return publication_matched(writer_); }
+  void flush(std::chrono::nanoseconds timeout) override { dds_wait_for_acks(writer_, timeout.count()); }
+
+ private:
+  dds_entity_t writer_;
+  const CycloneType& type_;
+  std::vector<char> buffer_;
+};
+
+class CycloneSampleReader final : public SampleReader {
+ public:
+  CycloneSampleReader(dds_entity_t reader, const CycloneType& type)
+      : reader_(reader), type_(type), buffer_(type.size, 0) {}
+  ~CycloneSampleReader() override { dds_delete(reader_); }
+  bool take(SampleHeader& header, std::vector<double>& values) override {
+    if (!take_one(reader_, buffer_.data())) return false;
+    const auto* h = reinterpret_cast<const mechsim_msg_Header*>(buffer_.data());
+    header = {h->run_id, h->step, h->t};
+    values.resize(type_.slots.size());
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      const char* p = buffer_.data() + type_.slots[i].offset;
+      if (type_.slots[i].kind == FieldKind::f64)
+        std::memcpy(&values[i], p, sizeof(double));
+      else
+        values[i] = *reinterpret_cast<const bool*>(p) ? 1.0 : 0.0;
+    }
+    return true;
+  }
+  int matched_writers() const override { return subscription_matched(reader_); }
+
+ private:
+  dds_entity_t reader_;
+  const CycloneType& type_;
+  std::vector<char> buffer_;
+};
+
+class CycloneControlWriter final : public ControlWriter {
+ public:
+  explicit CycloneControlWriter(dds_entity_t w) : writer_(w) {}
+  ~CycloneControlWriter() override { dds_delete(writer_); }
+  void write(const ControlMessage& m) override {
+    mechsim_msg_Control c{};
+    c.header.run_id = m.run_id;
+    c.command = static_cast<int32_t>(m.command);
+    c.end_time = m.end_time;
+    c.macro_step = m.macro_step;
+    c.mode = static_cast<int32_t>(m.mode);
+    c.rtf = m.rtf;
+    dds_return_t rc = dds_write(writer_, &c);
+    if (rc != DDS_RETCODE_OK) fail("write control", rc);
+  }
+  int matched_readers() const override { return publication_matched(writer_); }
+
+ private:
+  dds_entity_t writer_;
+};
+
+class CycloneControlReader final : public ControlReader {
+ public:
+  explicit CycloneControlReader(dds_entity_t r) : reader_(r) {}
+  ~CycloneControlReader() override { dds_delete(reader_); }
+  std::optional<ControlMessage> take() override {
+    mechsim_msg_Control c{};
+    if (!take_one(reader_, &c)) return std::nullopt;
+    return ControlMessage{c.header.run_id, static_cast<ControlCommand>(c.command), c.end_time,
+                          c.macro_step, static_cast<RunMode>(c.mode), c.rtf};
+  }
+
+ private:
+  dds_entity_t reader_;
+};
+
+class CycloneStatusWriter final : public StatusWriter {
+ public:
+  explicit CycloneStatusWriter(dds_entity_t w) : writer_(w) {}
+  ~CycloneStatusWriter() override { dds_delete(writer_); }
+  void write(const StatusMessage& m) override {
+    mechsim_msg_Status s{};
+    s.header = {m.header.run_id, m.header.step, m.header.t};
+    copy_bounded(s.node, sizeof s.node, m.node);
+    s.state = static_cast<int32_t>(m.state);
+    s.wall_time = m.wall_time;
+    s.solver_steps = m.solver_steps;
+    s.rhs_evals = m.rhs_evals;
+    s.error_test_failures = m.error_test_failures;
+    s.nonlinear_failures = m.nonlinear_failures;
+    s.roots_found = m.roots_found;
+    s.last_step_size = m.last_step_size;
+    s.last_order = m.last_order;
+    copy_bounded(s.message, sizeof s.message, m.message);
+    dds_write(writer_, &s);  // best effort: a lost heartbeat is harmless
+  }
+
+ private:
+  dds_entity_t writer_;
+};
+
+class CycloneStatusReader final : public StatusReader {
+ public:
+  explicit CycloneStatusReader(dds_entity_t r) : reader_(r) {}
+  ~CycloneStatusReader() override { dds_delete(reader_); }
+  std::optional<StatusMessage> take() override {
+    mechsim_msg_Status s{};
+    if (!take_one(reader_, &s)) return std::nullopt;
+    StatusMessage m;
+    m.header = {s.header.run_id, s.header.step, s.header.t};
+    m.node = s.node;
+    m.state = static_cast<NodeState>(s.state);
+    m.wall_time = s.wall_time;
+    m.solver_steps = s.solver_steps;
+    m.rhs_evals = s.rhs_evals;
+    m.error_test_failures = s.error_test_failures;
+    m.nonlinear_failures = s.nonlinear_failures;
+    m.roots_found = s.roots_found;
+    m.last_step_size = s.last_step_size;
+    m.last_order = s.last_order;
+    m.message = s.message;
+    return m;
+  }
+
+ private:
+  dds_entity_t reader_;
+};
+
+}  // namespace
+
+CycloneParticipant::CycloneParticipant(int domain_id) {
+  participant_ = check(dds_create_participant(static_cast<dds_domainid_t>(domain_id), nullptr, nullptr),
+                       "create participant on domain " + std::to_string(domain_id));
+  waitset_ = check(dds_create_waitset(participant_), "create waitset");
+  guard_ = check(dds_create_guardcondition(participant_), "create guard condition");
+  check(dds_waitset_attach(waitset_, guard_, guard_), "attach guard condition");
+}
+
+CycloneParticipant::~CycloneParticipant() { dds_delete(participant_); }
+
+dds_entity_t CycloneParticipant::topic(const std::string& name, const dds_topic_descriptor_t* desc) {
+  auto it = topics_.find(name);
+  if (it != topics_.end()) return it->second;
+  dds_entity_t t = check(dds_create_topic(participant_, desc, name.c_str(), nullptr, nullptr),
+                         "create topic " + name);
+  topics_.emplace(name, t);
+  return t;
+}
+
+dds_entity_t CycloneParticipant::attach_reader(dds_entity_t reader) {
+  dds_entity_t cond = check(dds_create_readcondition(reader, DDS_ANY_STATE), "create read condition");
+  check(dds_waitset_attach(waitset_, cond, reader), "attach read condition");
+  return reader;
+}
+
+std::unique_ptr<SampleWriter> CycloneParticipant::create_writer(const std::string& topic_name,
+                                                                const TopicType& type) {
+  const CycloneType& ct = cyclone_type(type);
+  Qos qos = data_qos();
+  dds_entity_t w = check(dds_create_writer(participant_, topic(topic_name, ct.descriptor), qos.q, nullptr),
+                         "create writer on " + topic_name);
+  return std::make_unique<CycloneSampleWriter>(w, ct);
+}
+
+std::unique_ptr<SampleReader> CycloneParticipant::create_reader(const std::string& topic_name,
+                                                                const TopicType& type) {
+  const CycloneType& ct = cyclone_type(type);
+  Qos qos = data_qos();
+  dds_entity_t r = check(dds_create_reader(participant_, topic(topic_name, ct.descriptor), qos.q, nullptr),
+                         "create reader on " + topic_name);
+  return std::make_unique<CycloneSampleReader>(attach_reader(r), ct);
+}
+
+std::unique_ptr<ControlWriter> CycloneParticipant::create_control_writer() {
+  Qos qos = control_qos();
+  dds_entity_t w = check(dds_create_writer(participant_, topic(kControlTopic, &mechsim_msg_Control_desc), qos.q, nullptr),
+                         "create control writer");
+  return std::make_unique<CycloneControlWriter>(w);
+}
+
+std::unique_ptr<ControlReader> CycloneParticipant::create_control_reader() {
+  Qos qos = control_qos();
+  dds_entity_t r = check(dds_create_reader(participant_, topic(kControlTopic, &mechsim_msg_Control_desc), qos.q, nullptr),
+                         "create control reader");
+  return std::make_unique<CycloneControlReader>(attach_reader(r));
+}
+
+std::unique_ptr<StatusWriter> CycloneParticipant::create_status_writer() {
+  Qos qos = status_qos();
+  dds_entity_t w = check(dds_create_writer(participant_, topic(kStatusTopic, &mechsim_msg_Status_desc), qos.q, nullptr),
+                         "create status writer");
+  return std::make_unique<CycloneStatusWriter>(w);
+}
+
+std::unique_ptr<StatusReader> CycloneParticipant::create_status_reader() {
+  Qos qos = status_qos();
+  dds_entity_t r = check(dds_create_reader(participant_, topic(kStatusTopic, &mechsim_msg_Status_desc), qos.q, nullptr),
+                         "create status reader");
+  return std::make_unique<CycloneStatusReader>(attach_reader(r));
+}
+
+bool CycloneParticipant::wait(std::chrono::nanoseconds timeout) {
+  dds_attach_t triggered[16];
+  dds_return_t n = dds_waitset_wait(waitset_, triggered, 16, timeout.count());
+  if (n < 0) fail("waitset wait", n);
+  for (dds_return_t i = 0; i < std::min<dds_return_t>(n, 16); ++i)
+    if (triggered[i] == static_cast<dds_attach_t>(guard_)) {
+      bool was = false;
+      dds_take_guardcondition(guard_, &was);
+    }
+  return n > 0;
+}
+
+void CycloneParticipant::wake() { dds_set_guardcondition(guard_, true); }
+
+}  // namespace mechsim::transport::cyclone

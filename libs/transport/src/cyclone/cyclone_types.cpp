@@ -1,0 +1,50 @@
+#include "cyclone_types.h"
+
+#include <stdexcept>
+
+#include "cam.h"
+#include "follower.h"
+
+namespace mechsim::transport::cyclone {
+
+namespace {
+#define MECHSIM_F64(Struct, field) FieldSlot{offsetof(Struct, field), FieldKind::f64}
+#define MECHSIM_FLAG(Struct, field) FieldSlot{offsetof(Struct, field), FieldKind::boolean}
+
+std::vector<CycloneType> make_bindings() {
+  std::vector<CycloneType> b;
+  b.push_back({find_topic_type("CamState"), &mechsim_msg_CamState_desc, sizeof(mechsim_msg_CamState),
+               {MECHSIM_F64(mechsim_msg_CamState, angle), MECHSIM_F64(mechsim_msg_CamState, speed),
+                MECHSIM_F64(mechsim_msg_CamState, lift), MECHSIM_F64(mechsim_msg_CamState, lift_d1),
+                MECHSIM_F64(mechsim_msg_CamState, lift_d2),
+                MECHSIM_F64(mechsim_msg_CamState, pressure_angle),
+                MECHSIM_F64(mechsim_msg_CamState, shaft_torque),
+                MECHSIM_F64(mechsim_msg_CamState, drive_power)}});
+  b.push_back({find_topic_type("FollowerState"), &mechsim_msg_FollowerState_desc,
+               sizeof(mechsim_msg_FollowerState),
+               {MECHSIM_F64(mechsim_msg_FollowerState, position),
+                MECHSIM_F64(mechsim_msg_FollowerState, velocity),
+                MECHSIM_F64(mechsim_msg_FollowerState, acceleration),
+                MECHSIM_F64(mechsim_msg_FollowerState, contact_force),
+                MECHSIM_FLAG(mechsim_msg_FollowerState, contact),
+                MECHSIM_F64(mechsim_msg_FollowerState, drive_torque),
+                MECHSIM_F64(mechsim_msg_FollowerState, spring_force),
+                MECHSIM_F64(mechsim_msg_FollowerState, load_force),
+                MECHSIM_F64(mechsim_msg_FollowerState, inertia_force)}});
+  for (const auto& binding : b)
+    if (binding.type == nullptr || binding.slots.size() != binding.type->fields.size())
+      throw std::logic_error("cyclone binding does not match topic_types.cpp");
+  return b;
+}
+#undef MECHSIM_F64
+#undef MECHSIM_FLAG
+}  // namespace
+
+const CycloneType& cyclone_type(const TopicType& type) {
+  static const std::vector<CycloneType> bindings = make_bindings();
+  for (const auto& b : bindings)
+    if (b.type == &type) return b;
+  throw std::runtime_error("no Cyclone DDS binding for topic type " + type.idl_name);
+}
+
+}  // namespace mechsim::transport::cyclone

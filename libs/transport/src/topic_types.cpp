@@ -1,0 +1,40 @@
+#include "mechsim/transport/topic_types.h"
+
+namespace mechsim::transport {
+
+int TopicType::field_index(std::string_view name) const {
+  for (std::size_t i = 0; i < fields.size(); ++i)
+    if (fields[i].name == name) return static_cast<int>(i);
+  return -1;
+}
+
+namespace {
+FieldInfo f64(const char* name) { return {name, FieldKind::f64}; }
+FieldInfo flag(const char* name) { return {name, FieldKind::boolean}; }
+
+// Mirrors idl/cam.idl.
+const TopicType kCamState{"mechsim::msg::CamState", "cam.idl",
+                          {f64("angle"), f64("speed"), f64("lift"), f64("lift_d1"), f64("lift_d2"),
+                           f64("pressure_angle"), f64("shaft_torque"), f64("drive_power")}};
+// Mirrors idl/follower.idl.
+const TopicType kFollowerState{"mechsim::msg::FollowerState", "follower.idl",
+                               {f64("position"), f64("velocity"), f64("acceleration"),
+                                f64("contact_force"), flag("contact"), f64("drive_torque"),
+                                f64("spring_force"), f64("load_force"), f64("inertia_force")}};
+}  // namespace
+
+const std::vector<const TopicType*>& all_topic_types() {
+  static const std::vector<const TopicType*> types{&kCamState, &kFollowerState};
+  return types;
+}
+
+const TopicType* find_topic_type(std::string_view name) {
+  for (const TopicType* t : all_topic_types()) {
+    std::string_view scoped = t->idl_name;
+    std::string_view short_name = scoped.substr(scoped.rfind(':') + 1);
+    if (name == scoped || name == short_name) return t;
+  }
+  return nullptr;
+}
+
+}  // namespace mechsim::transport

@@ -1,0 +1,70 @@
+#include "node_main.h"
+
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <iostream>
+#include <sys/prctl.h>
+
+#include <CLI/CLI.hpp>
+
+#include "mechsim/config/scene.h"
+#include "mechsim/cosim/node_runner.h"
+#include "mechsim/cosim/scene_plan.h"
+#include "mechsim/transport/backends.h"
+
+namespace mechsim::nodes {
+
+namespace {
+std::atomic<bool> g_stop{false};
+void on_signal(int) { g_stop.store(true); }
+}  // namespace
+
+int node_main(const char* node_type, int argc, char** argv) {
+  // Logs go to a file in the run folder: keep them line by line so a crash loses nothing.
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
+  // Never outlive the launcher (it may be killed without a chance to stop us).
+  prctl(PR_SET_PDEATHSIG, SIGTERM);
+
+  CLI::App app{std::string("mechsim node '") + node_type +
+               "': one participant of a scene. Normally started by `mechsim launch`."};
+  std::string scene_path, node_name, run_dir;
+  std::uint64_t run_id = 0;
+  int domain = 0;
+  app.add_option("--scene", scene_path, "scene file (the run folder's resolved scene.yaml)")->required();
+  app.add_option("--node", node_name, "participant instance name in the scene")->required();
+  app.add_option("--run-id", run_id, "run id the samples carry")->required();
+  app.add_option("--domain", domain, "DDS domain id")->required()->check(CLI::Range(0, 232));
+  app.add_option("--run-dir", run_dir, "folder for this node's output log (omit: none)");
+  CLI11_PARSE(app, argc, argv);
+
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+  try {
+    config::Scene scene = config::load_scene(scene_path);
+    cosim::ScenePlan plan = cosim::ScenePlan::build(scene);
+    const auto* spec = scene.find_participant(node_name);
+    if (!spec) {
+      std::cerr << node_type << ": no participant '" << node_name << "' in " << scene_path << "\n";
+      return 2;
+    }
+    if (spec->type != node_type) {
+      std::cerr << node_type << ": participant '" << node_name << "' is a " << spec->type << ", not a " << node_type << "\n";
+      return 2;
+    }
+    auto participant = transport::create_participant(spec->vendor, domain);
+    cosim::NodeRunOptions options;
+    options.run_dir = run_dir;
+    options.run_id = run_id;
+    options.stop_requested = &g_stop;
+    return cosim::run_node(plan, node_name, *participant, options);
+  } catch (const config::ConfigError& e) {
+    std::cerr << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << node_type << " '" << node_name << "': " << e.what() << "\n";
+    return 1;
+  }
+}
+
+}  // namespace mechsim::nodes

@@ -1,0 +1,11 @@
+// The shared main of every node process. The launcher starts a node as
+//   <type> --scene RUN_DIR/scene.yaml --node NAME --run-id ID --domain D [--run-dir DIR]
+// with CYCLONEDDS_URI pointing at the loopback configuration.
+#pragma once
+
+namespace mechsim::nodes {
+
+// Returns the process exit code: 0 done, 1 failed, 2 bad arguments or scene, 3 stopped.
+int node_main(const char* node_type, int argc, char** argv);
+
+}  // namespace mechsim::nodes

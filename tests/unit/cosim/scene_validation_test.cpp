@@ -1,0 +1,94 @@
+// Every class of bad scene input is refused before anything runs, with a message that
+// names the file, the key path and what was expected.
+#include <gtest/gtest.h>
+
+#include "mechsim/cosim/scene_plan.h"
+#include "scene_files.h"
+
+namespace mechsim::cosim {
+namespace {
+
+using testing::cam_press_with;
+using testing::write_scene;
+
+// Loads and plans a scene; returns the refusal message ("" when accepted).
+std::string refusal(const std::string& text, std::string* path_out = nullptr) {
+  const std::string path = write_scene(text);
+  if (path_out) *path_out = path;
+  try {
+    config::Scene scene = config::load_scene(path);
+    ScenePlan::build(scene);
+    return "";
+  } catch (const config::ConfigError& e) {
+    return e.what();
+  }
+}
+
+void expect_refused(const std::string& text, const std::string& key_path, const std::string& expected_words) {
+  std::string path;
+  std::string msg = refusal(text, &path);
+  ASSERT_FALSE(msg.empty()) << "accepted, but should refuse at " << key_path;
+  EXPECT_NE(msg.find(path), std::string::npos) << msg;
+  EXPECT_NE(msg.find(key_path), std::string::npos) << msg;
+  EXPECT_NE(msg.find(expected_words), std::string::npos) << msg;
+}
+
+TEST(SceneValidation, TheShippedCamPressIsAccepted) {
+  EXPECT_EQ(refusal(testing::read_file(testing::shipped_scene("cam_press.yaml"))), "");
+}
+
+TEST(SceneValidation, UnknownKeys) {
+  expect_refused(cam_press_with("mass: 25 kg", "masss: 25 kg"), "participants.follower.params", "unknown key 'masss'");
+  expect_refused(cam_press_with("mode: lockstep", "mood: lockstep"), "mood", "unknown key");
+}
+
+TEST(SceneValidation, MissingKeys) {
+  expect_refused(cam_press_with("mass: 25 kg", ""), "participants.follower.params.mass", "missing");
+  expect_refused(cam_press_with("    type: follower", ""), "participants.follower.type", "missing");
+}
+
+TEST(SceneValidation, WrongUnits) {
+  expect_refused(cam_press_with("mass: 25 kg", "mass: 25 mm"), "participants.follower.params.mass", "mass");
+  expect_refused(cam_press_with("speed: 30 rpm", "speed: 30 mm"), "participants.cam.params.speed", "angular");
+  expect_refused(cam_press_with("step: 1 ms", "step: 1 furlong"), "time.step", "");
+}
+
+TEST(SceneValidation, NonPhysicalValues) {
+  expect_refused(cam_press_with("mass: 25 kg", "mass: -25 kg"), "participants.follower.params.mass", "");
+  expect_refused(cam_press_with("mass: 25 kg", "mass: 0 kg"), "participants.follower.params.mass", "");
+  expect_refused(cam_press_with("step: 1 ms", "step: 0 ms"), "time.step", "");
+  expect_refused(cam_press_with("end: 2 s", "end: 0 s"), "time.end", "after the start");
+  expect_refused(cam_press_with("end: 2 s", "end: 2.0005 s"), "time.end", "whole number of steps");
+}
+
+TEST(SceneValidation, UnknownNodeType) {
+  expect_refused(cam_press_with("type: follower", "type: folower"), "participants.follower.type", "node type");
+}
+
+TEST(SceneValidation, ConnectionsBetweenTypesThatCannotTalkOrToNobody) {
+  expect_refused(cam_press_with("{from: cam, to: follower, order: gauss_seidel}", "{from: cam, to: nobody}"),
+                 "connections[0].to", "participant");
+  // Without the cam -> follower connection the follower's required inputs are unfed.
+  expect_refused(cam_press_with("  - {from: cam, to: follower, order: gauss_seidel}\n", ""), "connections",
+                 "required input");
+}
+
+TEST(SceneValidation, CyclesOfGaussSeidelEdgesAreRefusedAndNamed) {
+  std::string msg = refusal(cam_press_with("order: jacobi, reconstruction: hold", "order: gauss_seidel"));
+  EXPECT_NE(msg.find("Gauss-Seidel edges without cycles"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("cam -> follower"), std::string::npos) << msg;
+}
+
+TEST(SceneValidation, AMotionLawThatDoesNotCloseIsRefused) {
+  expect_refused(cam_press_with("lift: -25 mm", "lift: -20 mm"), "participants.cam.params.law", "does not close");
+}
+
+TEST(SceneValidation, OverridesAreValidatedLikeTheFile) {
+  const std::string path = write_scene(testing::read_file(testing::shipped_scene("cam_press.yaml")));
+  EXPECT_THROW(config::load_scene(path, {"time.step=-1 ms"}), config::ConfigError);
+  config::Scene ok = config::load_scene(path, {"participants.cam.params.speed=60 rpm", "time.end=1 s"});
+  EXPECT_EQ(ok.time.steps(), 1000);
+}
+
+}  // namespace
+}  // namespace mechsim::cosim

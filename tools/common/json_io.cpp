@@ -1,0 +1,13 @@
+#include "json_io.h"
+
+#include "file_io.h"
+
+namespace mechsim::tools {
+
+void write_json_file(const std::string& path, const nlohmann::json& document) {
+  const std::string text =
+      document.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+  write_file_atomically(path, text);
+}
+
+}  // namespace mechsim::tools

@@ -1,0 +1,19 @@
+// JSON results of the `mechsim` commands: every document carries `schema_version` (this
+// constant) and `provenance` (provenance.h); layouts are documented in docs/.
+#pragma once
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace mechsim::tools {
+
+// Bumped when a JSON layout changes incompatibly.
+inline const std::string schema_version = "1";
+
+// Writes `document` pretty-printed (2-space indent, trailing newline), atomically.
+// NaN and infinite numbers come out as null (JSON has no such numbers); invalid UTF-8
+// in strings is replaced rather than refused. Throws std::runtime_error naming the path.
+void write_json_file(const std::string& path, const nlohmann::json& document);
+
+}  // namespace mechsim::tools

@@ -1,0 +1,420 @@
+#include "launcher.h"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <random>
+#include <sstream>
+#include <thread>
+
+#include "domain_lock.h"
+#include "mechsim/config/scene.h"
+#include "mechsim/cosim/composer.h"
+#include "mechsim/cosim/output_log.h"
+#include "mechsim/cosim/scene_plan.h"
+#include "mechsim/transport/backends.h"
+#include "node_processes.h"
+#include "paths.h"
+#include "run_report.h"
+#include "signal_compare.h"
+#include "csv.h"
+#include "json_io.h"
+#include "plot.h"
+#include "provenance.h"
+
+namespace mechsim::launch {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+using nlohmann::json;
+
+namespace {
+
+std::atomic<int> g_interrupt{0};
+void on_interrupt(int sig) { g_interrupt.store(sig); }
+
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+std::string hex_id(std::uint64_t id) {
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(id));
+  return buf;
+}
+
+struct NodeWatch {
+  transport::StatusMessage last;
+  bool seen = false;
+  Clock::time_point last_seen{};
+  double done_at_s = -1;  // since start, from the node's done status
+};
+
+// The outcome of the distributed part of a run.
+struct RunOutcome {
+  bool ok = false;
+  int exit_code = 1;
+  std::string failed_node;
+  std::string reason;
+  std::uint64_t failed_step = 0;
+  double wall_time_s = 0.0;  // start command -> all nodes done
+};
+
+class Run {
+ public:
+  Run(const LaunchOptions& o, config::Scene& scene, cosim::ScenePlan& plan) : opt_(o), scene_(scene), plan_(plan) {}
+
+  int execute();
+
+ private:
+  RunOutcome run_nodes();
+  void fail(RunOutcome& out, const std::string& node, const std::string& reason);
+  void print_progress(double since_start, bool final_line);
+  json summarise(const RunOutcome& out);
+
+  const LaunchOptions& opt_;
+  config::Scene& scene_;
+  cosim::ScenePlan& plan_;
+  std::uint64_t run_id_ = 0;
+  std::string run_dir_;
+  int domain_ = 0;
+  std::unique_ptr<transport::Participant> participant_;
+  std::unique_ptr<transport::ControlWriter> control_;
+  std::unique_ptr<transport::StatusReader> status_;
+  NodeProcesses processes_;
+  std::map<std::string, NodeWatch> watch_;
+  bool tty_ = false;
+};
+
+void Run::fail(RunOutcome& out, const std::string& node, const std::string& reason) {
+  if (!out.reason.empty()) return;  // keep the first cause
+  out.ok = false;
+  out.failed_node = node;
+  out.reason = reason;
+  auto it = watch_.find(node);
+  out.failed_step = it != watch_.end() && it->second.seen ? it->second.last.header.step : 0;
+}
+
+void Run::print_progress(double since_start, bool final_line) {
+  if (!tty_ || !opt_.progress) return;
+  std::uint64_t step = UINT64_MAX;
+  for (const auto& [name, w] : watch_) step = std::min<std::uint64_t>(step, w.seen ? w.last.header.step : 0);
+  const double t = scene_.time.start + static_cast<double>(step) * scene_.time.step;
+  const double rate = since_start > 0 ? static_cast<double>(step) / since_start : 0.0;
+  const double rtf = since_start > 0 ? (t - scene_.time.start) / since_start : 0.0;
+  std::fprintf(stderr, "\r[%s] t = %.4f / %.4f s  step %llu / %ld  %.0f steps/s  rtf %.2f   %s", scene_.name.c_str(), t,
+               scene_.time.end, static_cast<unsigned long long>(step), scene_.time.steps(), rate, rtf,
+               final_line ? "\n" : "");
+  std::fflush(stderr);
+}
+
+RunOutcome Run::run_nodes() {
+  RunOutcome out;
+  const auto launched = Clock::now();
+  for (const auto& node : plan_.nodes()) {
+    const std::string exe = node_executable(node.type->name);
+    processes_.start(node.name(), exe,
+                     {"--scene", run_dir_ + "/scene.yaml", "--node", node.name(), "--run-id", std::to_string(run_id_),
+                      "--domain", std::to_string(domain_), "--run-dir", run_dir_},
+                     run_dir_ + "/" + node.name() + ".log");
+    watch_[node.name()] = {};
+  }
+
+  auto take_status = [&] {
+    while (auto s = status_->take()) {
+      if (s->header.run_id != run_id_) continue;
+      auto it = watch_.find(s->node);
+      if (it == watch_.end()) continue;
+      it->second.last = *s;
+      it->second.seen = true;
+      it->second.last_seen = Clock::now();
+    }
+  };
+  auto check_exits = [&](bool running) {
+    for (NodeProcess* p : processes_.poll()) {
+      const auto& w = watch_[p->name];
+      bool clean = !p->signalled && p->exit_code == 0;
+      if (!clean || !running) {
+        std::string reason = "node '" + p->name + "' " + p->describe_exit();
+        if (w.seen && !w.last.message.empty()) reason += ": " + w.last.message;
+        fail(out, p->name, reason);
+      }
+    }
+  };
+
+  // 1. Every node ready (matched end to end with its partners).
+  for (;;) {
+    take_status();
+    check_exits(false);
+    if (!out.reason.empty()) return out;
+    if (g_interrupt) {
+      fail(out, "", "interrupted");
+      out.exit_code = 130;
+      return out;
+    }
+    bool all_ready = true;
+    for (const auto& [name, w] : watch_) all_ready = all_ready && w.seen && w.last.state == transport::NodeState::ready;
+    if (all_ready) break;
+    if (seconds_since(launched) > opt_.ready_timeout_s) {
+      std::string late;
+      for (const auto& [name, w] : watch_)
+        if (!w.seen || w.last.state != transport::NodeState::ready) late += (late.empty() ? "" : ", ") + name;
+      fail(out, late, "nodes not ready after " + std::to_string(opt_.ready_timeout_s) + " s: " + late +
+                          " (see their logs in " + run_dir_ + ")");
+      return out;
+    }
+    participant_->wait(std::chrono::milliseconds(5));
+  }
+
+  // 2. Start, then watch until every node is done.
+  transport::ControlMessage start{run_id_, transport::ControlCommand::start, scene_.time.end, scene_.time.step,
+                                  transport::RunMode::lockstep, scene_.rtf};
+  control_->write(start);
+  const auto started = Clock::now();
+  for (auto& [name, w] : watch_) w.last_seen = started;
+  auto last_progress = Clock::now();
+  for (;;) {
+    take_status();
+    for (auto& [name, w] : watch_)
+      if (w.last.state == transport::NodeState::done && w.done_at_s < 0) w.done_at_s = seconds_since(started);
+    check_exits(true);
+    if (!out.reason.empty()) break;
+    if (processes_.all_exited()) {
+      out.ok = true;
+      break;
+    }
+    if (g_interrupt) {
+      fail(out, "", "interrupted by signal " + std::to_string(g_interrupt.load()));
+      out.exit_code = 130;
+      break;
+    }
+    for (auto& p : processes_.processes()) {
+      const auto& w = watch_[p.name];
+      if (!p.exited && seconds_since(w.last_seen) > scene_.hang_timeout) {
+        std::ostringstream why;
+        why << "node '" << p.name << "' hung: no status for " << scene_.hang_timeout << " s (last step "
+            << (w.seen ? w.last.header.step : 0) << ")";
+        fail(out, p.name, why.str());
+      }
+    }
+    if (!out.reason.empty()) break;
+    if (seconds_since(last_progress) > 0.2) {
+      print_progress(seconds_since(started), false);
+      last_progress = Clock::now();
+    }
+    participant_->wait(std::chrono::milliseconds(20));
+  }
+  out.wall_time_s = seconds_since(started);
+  double done_max = 0;
+  bool all_done = true;
+  for (const auto& [name, w] : watch_) {
+    all_done = all_done && w.done_at_s >= 0;
+    done_max = std::max(done_max, w.done_at_s);
+  }
+  if (out.ok && all_done) out.wall_time_s = done_max;  // excludes process tear-down
+  if (out.ok) {
+    print_progress(out.wall_time_s, true);
+  } else {
+    if (tty_ && opt_.progress) std::fprintf(stderr, "\n");
+    // Tell the others, then make sure: every process stops, none is left behind.
+    transport::ControlMessage abort = start;
+    abort.command = transport::ControlCommand::abort;
+    control_->write(abort);
+    processes_.stop_all(2.0);
+  }
+  return out;
+}
+
+json Run::summarise(const RunOutcome& out) {
+  json s;
+  s["schema_version"] = tools::schema_version;
+  s["provenance"] = tools::provenance(scene_.file);
+  s["scene"] = scene_.name;
+  s["scene_file"] = scene_.file;
+  s["run_id"] = hex_id(run_id_);
+  s["run_dir"] = run_dir_;
+  s["domain_id"] = domain_;
+  s["mode"] = scene_.mode;
+  s["status"] = out.ok ? "ok" : "failed";
+  s["macro_step_s"] = scene_.time.step;
+  s["simulated_time_s"] = scene_.time.end - scene_.time.start;
+  s["steps"] = scene_.time.steps();
+  s["wall_time_s"] = out.wall_time_s;
+  s["steps_per_second"] = out.wall_time_s > 0 ? static_cast<double>(scene_.time.steps()) / out.wall_time_s : 0.0;
+  s["real_time_factor"] = out.wall_time_s > 0 ? (scene_.time.end - scene_.time.start) / out.wall_time_s : 0.0;
+  if (!out.ok)
+    s["failure"] = {{"node", out.failed_node}, {"last_step", out.failed_step}, {"reason", out.reason}};
+  json nodes = json::object();
+  for (auto& p : processes_.processes()) {
+    const auto& w = watch_[p.name];
+    const auto* spec = scene_.find_participant(p.name);
+    nodes[p.name] = {{"type", spec->type},
+                     {"vendor", spec->vendor},
+                     {"exit", p.describe_exit()},
+                     {"last_step", w.seen ? w.last.header.step : 0},
+                     {"solver",
+                      {{"steps", w.last.solver_steps},
+                       {"rhs_evals", w.last.rhs_evals},
+                       {"error_test_failures", w.last.error_test_failures},
+                       {"nonlinear_failures", w.last.nonlinear_failures},
+                       {"roots_found", w.last.roots_found},
+                       {"last_step_s", w.last.last_step_size},
+                       {"last_order", w.last.last_order}}},
+                     {"log", run_dir_ + "/" + p.name + ".log"}};
+  }
+  s["nodes"] = nodes;
+  return s;
+}
+
+int Run::execute() {
+  tty_ = ::isatty(STDERR_FILENO);
+  std::random_device rd;
+  run_id_ = (static_cast<std::uint64_t>(rd()) << 32) ^ rd() ^ static_cast<std::uint64_t>(::getpid());
+  run_dir_ = (fs::path(opt_.runs_dir) / (scene_.name + "-" + hex_id(run_id_).substr(8))).string();
+  fs::create_directories(run_dir_);
+  {
+    std::ofstream f(run_dir_ + "/scene.yaml");
+    f << "# resolved scene of run " << hex_id(run_id_) << " (from " << scene_.file << ", overrides applied)\n"
+      << config::scene_to_yaml(scene_) << "\n";
+  }
+  std::optional<DomainLock> lock;
+  if (scene_.domain_id) {
+    domain_ = *scene_.domain_id;
+  } else {
+    lock.emplace(DomainLock::acquire());
+    domain_ = lock->domain_id();
+  }
+  configure_dds_environment();
+  participant_ = transport::create_participant(scene_.vendor, domain_);
+  control_ = participant_->create_control_writer();
+  status_ = participant_->create_status_reader();
+
+  std::fprintf(stderr, "mechsim: scene '%s', run %s, domain %d, %zu nodes, folder %s\n", scene_.name.c_str(),
+               hex_id(run_id_).c_str(), domain_, plan_.nodes().size(), run_dir_.c_str());
+  RunOutcome out = run_nodes();
+  json summary = summarise(out);
+
+  if (out.ok) {
+    // Compare with the monolithic reference on the macro-step grid.
+    cosim::ScenePlan reference_plan = cosim::ScenePlan::build(scene_);
+    cosim::ReferenceRun ref = cosim::run_reference(reference_plan);
+    std::map<std::string, cosim::OutputLog> logs;
+    for (const auto& node : plan_.nodes())
+      logs[node.name()] = cosim::read_output_log(run_dir_ + "/" + node.name() + ".outputs.bin");
+    const auto& t = ref.log.data[0];
+    auto cosim_series = [&](const config::SignalRef& r) -> std::span<const double> {
+      const auto& log = logs.at(r.participant);
+      int c = log.column(r.output);
+      return c < 0 ? std::span<const double>{} : std::span<const double>(log.data[c]);
+    };
+    auto reference_series = [&](const config::SignalRef& r) -> std::span<const double> {
+      int c = ref.log.column(r.full_name());
+      return c < 0 ? std::span<const double>{} : std::span<const double>(ref.log.data[c]);
+    };
+    json signals = json::object();
+    std::vector<std::string> csv_header{"t"};
+    std::vector<std::vector<double>> csv_columns{t};
+    plot::Figure figure;
+    figure.title = scene_.name + ": co-simulation against the reference";
+    for (const auto& sig : scene_.compare) {
+      auto c = cosim_series(sig);
+      auto r = reference_series(sig);
+      if (c.size() != r.size()) throw std::runtime_error(sig.full_name() + ": node log has " + std::to_string(c.size()) +
+                                                         " rows, reference " + std::to_string(r.size()));
+      SignalError e = compare_signal(t, c, r);
+      const auto& node = plan_.node(sig.participant);
+      signals[sig.full_name()] = {{"unit", node.block->outputs()[node.block->output_index(sig.output)].unit},
+                                  {"max_abs_error", e.max_abs}, {"max_rel_error", e.max_rel},
+                                  {"rms_abs_error", e.rms_abs}, {"rms_rel_error", e.rms_rel},
+                                  {"reference_range", e.range}, {"t_of_max_error_s", e.t_of_max},
+                                  {"finite", e.finite}};
+      csv_header.push_back(sig.full_name());
+      csv_columns.emplace_back(c.begin(), c.end());
+      csv_header.push_back(sig.full_name() + ".reference");
+      csv_columns.emplace_back(r.begin(), r.end());
+      plot::Panel panel;
+      panel.title = sig.full_name();
+      panel.xlabel = "t [s]";
+      panel.ylabel = sig.output + " [" + signals[sig.full_name()]["unit"].get<std::string>() + "]";
+      panel.series.push_back({"reference", std::vector<double>(t.begin(), t.end()), std::vector<double>(r.begin(), r.end()), "lines"});
+      panel.series.push_back({"co-simulation", std::vector<double>(t.begin(), t.end()), std::vector<double>(c.begin(), c.end()), "dashed"});
+      figure.panels.push_back(panel);
+    }
+    summary["signals"] = signals;
+    summary["report"] = report_extrema(scene_, t, cosim_series);
+    summary["reference"] = {{"rtol", ref.rtol}, {"wall_time_s", ref.wall_time_s}, {"solver", solver_stats_json(ref.stats)}};
+    tools::write_csv(run_dir_ + "/signals.csv", csv_header, csv_columns);
+    summary["files"] = {{"signals_csv", run_dir_ + "/signals.csv"}};
+    if (opt_.plots && !figure.panels.empty()) {
+      std::string why;
+      if (plot::write_png(figure, run_dir_ + "/signals.png", &why))
+        summary["files"]["signals_png"] = run_dir_ + "/signals.png";
+      else
+        std::fprintf(stderr, "mechsim: no plot: %s\n", why.c_str());
+    }
+  }
+  tools::write_json_file(run_dir_ + "/summary.json", summary);
+  if (!opt_.json_path.empty()) tools::write_json_file(opt_.json_path, summary);
+
+  // Human summary.
+  if (out.ok) {
+    std::printf("run %s of '%s': %ld steps of %g s in %.3f s wall: %.0f steps/s, real-time factor %.2f\n",
+                hex_id(run_id_).c_str(), scene_.name.c_str(), scene_.time.steps(), scene_.time.step, out.wall_time_s,
+                summary["steps_per_second"].get<double>(), summary["real_time_factor"].get<double>());
+    for (auto& [name, e] : summary["signals"].items())
+      std::printf("  %-32s max |error| %.3g %s (%.3g %% of range), rms %.3g\n", name.c_str(),
+                  e["max_abs_error"].get<double>(), e["unit"].get<std::string>().c_str(),
+                  100 * e["max_rel_error"].get<double>(), e["rms_abs_error"].get<double>());
+    for (auto& r : summary["report"]) {
+      std::printf("  %s %s = %.6g at t = %.6g s", r["stat"].get<std::string>().c_str(),
+                  r["signal"].get<std::string>().c_str(), r["value"].get<double>(), r["t_s"].get<double>());
+      if (r.contains("at"))
+        std::printf(", %s = %.6g %s", r["at"]["signal"].get<std::string>().c_str(), r["at"]["value"].get<double>(),
+                    r["at"]["unit"].get<std::string>().c_str());
+      std::printf("\n");
+    }
+    std::printf("  run folder: %s\n", run_dir_.c_str());
+    return 0;
+  }
+  std::fprintf(stderr, "mechsim: run failed: %s%s\n", out.reason.c_str(),
+               out.failed_node.empty() || out.failed_node.find(',') != std::string::npos
+                   ? ""
+                   : (" (last step " + std::to_string(out.failed_step) + ")").c_str());
+  std::fprintf(stderr, "mechsim: all node processes stopped; logs in %s\n", run_dir_.c_str());
+  return out.exit_code;
+}
+
+}  // namespace
+
+int launch(const LaunchOptions& options) {
+  std::signal(SIGINT, on_interrupt);
+  std::signal(SIGTERM, on_interrupt);
+  config::Scene scene;
+  std::optional<cosim::ScenePlan> plan;
+  try {
+    scene = config::load_scene(options.scene_path, options.overrides);
+    plan.emplace(cosim::ScenePlan::build(scene));
+    auto vendors = transport::available_vendors();
+    for (const auto& p : scene.participants)
+      if (std::find(vendors.begin(), vendors.end(), p.vendor) == vendors.end())
+        throw config::ConfigError(scene.file, p.key_path + ".dds",
+                                  "expected a DDS vendor compiled into this build, got '" + p.vendor + "'");
+  } catch (const config::ConfigError& e) {
+    std::fprintf(stderr, "%s\n", e.what());
+    return 2;
+  }
+  try {
+    Run run(options, scene, *plan);
+    return run.execute();
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "mechsim launch: %s\n", e.what());
+    return 1;
+  }
+}
+
+}  // namespace mechsim::launch

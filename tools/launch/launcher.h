@@ -1,0 +1,26 @@
+// `mechsim launch`: one distributed run of a scene. Validates the scene, gives the run a
+// folder, a run id and a free DDS domain, starts one process per participant, waits until
+// every node is ready end to end, sends start, shows progress, watches for nodes that die
+// or hang, and at the end compares the compared signals with the monolithic reference and
+// writes the summary. Every process is stopped on every path out.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace mechsim::launch {
+
+struct LaunchOptions {
+  std::string scene_path;
+  std::vector<std::string> overrides;  // "dotted.key=value"
+  std::string json_path;               // summary copy for scripts ("" = none)
+  std::string runs_dir = "runs";       // run folders go to <runs_dir>/<scene>-<run id>/
+  bool progress = true;                // progress line on a terminal
+  bool plots = true;
+  double ready_timeout_s = 30.0;       // from process start to all nodes ready
+};
+
+// Returns the process exit code: 0 ok, 1 run failed, 2 bad scene, 130 interrupted.
+int launch(const LaunchOptions& options);
+
+}  // namespace mechsim::launch

@@ -1,0 +1,39 @@
+#include "paths.h"
+
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <stdexcept>
+
+namespace mechsim::launch {
+
+namespace fs = std::filesystem;
+
+std::string executable_dir() {
+  std::error_code ec;
+  fs::path self = fs::read_symlink("/proc/self/exe", ec);
+  if (ec) throw std::runtime_error("cannot locate the running executable: " + ec.message());
+  return self.parent_path().string();
+}
+
+std::string node_executable(const std::string& node_type) {
+  fs::path exe = fs::path(executable_dir()) / node_type;
+  if (::access(exe.c_str(), X_OK) != 0)
+    throw std::runtime_error("node executable " + exe.string() + " is missing: build it (cmake --build build)");
+  return exe.string();
+}
+
+std::string project_dir() {
+  if (const char* home = std::getenv("MECHSIM_HOME")) return home;
+  return MECHSIM_SOURCE_DIR;
+}
+
+void configure_dds_environment() {
+  if (std::getenv("CYCLONEDDS_URI")) return;  // the user's own configuration wins
+  fs::path xml = fs::path(project_dir()) / "config/dds/cyclonedds-loopback.xml";
+  if (!fs::exists(xml)) throw std::runtime_error(xml.string() + " is missing (set MECHSIM_HOME to the project folder)");
+  ::setenv("CYCLONEDDS_URI", ("file://" + xml.string()).c_str(), 1);
+}
+
+}  // namespace mechsim::launch

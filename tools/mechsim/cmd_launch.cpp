@@ -1,0 +1,23 @@
+#include "commands.h"
+#include "launcher.h"
+
+namespace mechsim::tools {
+
+void add_launch_command(CLI::App& app, int& exit_code) {
+  auto* cmd = app.add_subcommand(
+      "launch", "Run a scene distributed: one process per participant over DDS; compare with the reference");
+  auto args = std::make_shared<SceneArgs>();
+  auto opt = std::make_shared<launch::LaunchOptions>();
+  add_scene_args(cmd, *args);
+  cmd->add_option("--json", opt->json_path, "also write the run summary (JSON) to this file");
+  cmd->add_option("--runs-dir", opt->runs_dir, "parent folder of the run folders")->capture_default_str();
+  cmd->add_flag("!--no-plot", opt->plots, "skip the PNG plot");
+  cmd->add_flag("!--no-progress", opt->progress, "no progress line");
+  cmd->callback([args, opt, &exit_code] {
+    opt->scene_path = args->scene;
+    opt->overrides = args->overrides();
+    exit_code = launch::launch(*opt);
+  });
+}
+
+}  // namespace mechsim::tools

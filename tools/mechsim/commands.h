@@ -1,0 +1,27 @@
+// Registration of the `mechsim` subcommands. Each sets `exit_code` when it runs.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+namespace mechsim::tools {
+
+std::string version_string();
+
+// The scene argument and the overrides every scene command accepts (--set and the
+// shortcuts --step, --end, --mode, --rtf), turned into "dotted.key=value" overrides.
+struct SceneArgs {
+  std::string scene;
+  std::vector<std::string> sets;
+  std::string step, end, mode, rtf;
+  std::vector<std::string> overrides() const;
+};
+void add_scene_args(CLI::App* cmd, SceneArgs& args);
+
+void add_launch_command(CLI::App& app, int& exit_code);
+void add_reference_command(CLI::App& app, int& exit_code);
+void add_check_command(CLI::App& app, int& exit_code);
+
+}  // namespace mechsim::tools
