@@ -24,8 +24,7 @@ void write_csv(const std::string& path, const std::vector<std::string>& header,
                const std::vector<std::vector<double>>& columns) {
   if (header.size() != columns.size()) {
     throw std::invalid_argument("write_csv " + path + ": " + std::to_string(header.size()) +
-                                " header names for " + std::to_string(columns.size()) +
-                                " columns");
+                                " header names for " + std::to_string(columns.size()) + " columns");
   }
   const std::size_t rows = columns.empty() ? 0 : columns.front().size();
   for (std::size_t c = 0; c < columns.size(); ++c) {

@@ -2,9 +2,8 @@
 // constant) and `provenance` (provenance.h); layouts are documented in docs/.
 #pragma once
 
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 namespace mechsim::tools {
 

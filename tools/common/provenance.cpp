@@ -41,8 +41,8 @@ std::string host_name() {
 std::string file_sha256(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) {
-    throw std::runtime_error("cannot read scene file " + path + " to hash it: " +
-                             std::strerror(errno));
+    throw std::runtime_error("cannot read scene file " + path +
+                             " to hash it: " + std::strerror(errno));
   }
   std::ostringstream bytes;
   bytes << in.rdbuf();

@@ -6,9 +6,8 @@
 // build links (a vendor that is not built in is absent).
 #pragma once
 
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 namespace mechsim::tools {
 

@@ -165,8 +165,8 @@ bool write_script_body(const Figure& figure, const fs::path& dir, std::string* b
                              "' (lines, points, linespoints, dashed)");
       }
       if (series.x.empty()) continue;  // gnuplot refuses an empty data file
-      const std::string data_name = "panel" + std::to_string(p + 1) + "_series" +
-                                    std::to_string(s + 1) + ".dat";
+      const std::string data_name =
+          "panel" + std::to_string(p + 1) + "_series" + std::to_string(s + 1) + ".dat";
       std::ofstream data(dir / data_name);
       data << "# " << one_line(series.label) << "\n# x y\n";
       for (std::size_t i = 0; i < series.x.size(); ++i) {
@@ -231,8 +231,8 @@ bool write_png(const Figure& figure, const std::string& png_path, std::string* w
   for (const char* terminal : {"pngcairo", "png"}) {
     std::ofstream gp(script);
     gp << "# mechsim figure: " << one_line(figure.title) << "\n"
-       << "set terminal " << terminal << " noenhanced size " << figure.width_px << ","
-       << height << "\n"
+       << "set terminal " << terminal << " noenhanced size " << figure.width_px << "," << height
+       << "\n"
        << "set output " << gp_string(image.string()) << "\n"
        << body;
     gp.close();

@@ -59,8 +59,7 @@ void check_keys(const std::string& file, const std::string& path, const YAML::No
       const auto [it, inserted] = first_line.emplace(key, line_of(entry.first));
       if (!inserted) {
         throw ConfigError(file, key_path + key,
-                          "duplicate key (first given at line " + std::to_string(it->second) +
-                              ")",
+                          "duplicate key (first given at line " + std::to_string(it->second) + ")",
                           line_of(entry.first));
       }
       check_keys(file, key_path + key, entry.second);
@@ -92,7 +91,8 @@ ConfigNode::ConfigNode(std::string file, std::string path, YAML::Node node)
 
 ConfigNode ConfigNode::load_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw ConfigError(path, "", std::string("cannot read the file: ") + std::strerror(errno));
+  if (!in)
+    throw ConfigError(path, "", std::string("cannot read the file: ") + std::strerror(errno));
   std::ostringstream text;
   text << in.rdbuf();
   if (in.bad()) throw ConfigError(path, "", "cannot read the file");
@@ -211,10 +211,9 @@ ConfigNode ConfigNode::at(std::size_t index) const {
   if (!node_.IsSequence()) fail("expected a list, got " + describe_value());
   const std::string element_path = path_ + "[" + std::to_string(index) + "]";
   if (index >= node_.size()) {
-    throw ConfigError(file_, element_path,
-                      "index out of range (the list has " + std::to_string(node_.size()) +
-                          " entries)",
-                      line());
+    throw ConfigError(
+        file_, element_path,
+        "index out of range (the list has " + std::to_string(node_.size()) + " entries)", line());
   }
   return ConfigNode(file_, element_path, node_[index]);
 }
@@ -334,7 +333,8 @@ std::string ConfigNode::string_or(std::string_view key, std::string default_valu
   return c ? c->as_string() : default_value;
 }
 
-std::string ConfigNode::choice(std::string_view key, const std::vector<std::string>& allowed) const {
+std::string ConfigNode::choice(std::string_view key,
+                               const std::vector<std::string>& allowed) const {
   std::optional<ConfigNode> c = optional_child(key);
   if (!c) {
     throw ConfigError(file_, child_path(key),
@@ -401,8 +401,7 @@ void ConfigNode::set_override(const std::string& dotted_path, const std::string&
       cur.reset(next);
     } else {
       if (cur.IsDefined() && !cur.IsNull() && !cur.IsMap()) {
-        refuse("'" + walked + "' is " + (cur.IsSequence() ? "a list" : "a value") +
-               ", not a map");
+        refuse("'" + walked + "' is " + (cur.IsSequence() ? "a list" : "a value") + ", not a map");
       }
       walked = walked.empty() ? step.key : walked + "." + step.key;
       YAML::Node next = cur[step.key];  // created (as a map entry) when missing

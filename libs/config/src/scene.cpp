@@ -1,5 +1,6 @@
 #include "mechsim/config/scene.h"
 
+#include <cctype>
 #include <cmath>
 #include <sstream>
 
@@ -74,7 +75,7 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   const ConfigNode& root = scene.root;
   if (!root.is_map()) root.fail("expected a scene: a map with keys scene, time, participants, ...");
   root.allow_only({"scene", "description", "time", "mode", "rtf", "dds", "hang_timeout",
-                   "participants", "connections", "compare", "report", "record"});
+                   "participants", "connections", "compare", "report", "record", "design"});
 
   scene.name = root.string("scene");
   if (!valid_name(scene.name)) root.child("scene").fail("expected a name of letters, digits and '_'");
@@ -97,6 +98,7 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
       scene.domain_id = static_cast<int>(d);
     }
   }
+  scene.design = root.optional_child("design");
   if (root.has("record")) root.child("record").fail("expected no 'record' section: recording is not implemented yet");
 
   const ConfigNode participants = root.child("participants");

@@ -62,8 +62,15 @@ struct Prefix {
 };
 
 const Prefix kPrefixes[] = {
-    {"n", 1e-9}, {"u", 1e-6}, {"\u00B5", 1e-6} /* micro sign */, {"\u03BC", 1e-6} /* mu */,
-    {"m", 1e-3}, {"c", 1e-2}, {"k", 1e3},      {"M", 1e6},       {"G", 1e9},
+    {"n", 1e-9},
+    {"u", 1e-6},
+    {"\u00B5", 1e-6},  // micro sign
+    {"\u03BC", 1e-6},  // Greek mu
+    {"m", 1e-3},
+    {"c", 1e-2},
+    {"k", 1e3},
+    {"M", 1e6},
+    {"G", 1e9},
 };
 
 struct Scaled {
@@ -108,8 +115,8 @@ double read_number(std::string_view& s) {
     digits.remove_prefix(1);
   }
   // from_chars would also take "inf"/"nan"; only decimal literals are values here.
-  if (digits.empty() || !(std::isdigit(static_cast<unsigned char>(digits.front())) ||
-                          digits.front() == '.')) {
+  if (digits.empty() ||
+      !(std::isdigit(static_cast<unsigned char>(digits.front())) || digits.front() == '.')) {
     throw Detail("it does not start with a number");
   }
   double value = 0.0;
@@ -255,8 +262,7 @@ double parse_quantity_as(std::string_view text, Dimension expected) {
                     detail.what() + ")");
   }
   if (q.has_unit && q.dimension != expected) {
-    std::string message =
-        "expected " + describe(expected) + ", got '" + std::string(text) + "'";
+    std::string message = "expected " + describe(expected) + ", got '" + std::string(text) + "'";
     if (expected == dim::angular_velocity && q.dimension == dim::frequency) {
       message += " (Hz is a frequency; write a shaft speed in rpm, rev/s or rad/s)";
     }

@@ -119,6 +119,16 @@ bool CompositeBlock::handle_events(double t, std::span<double> x, std::span<cons
   return changed;
 }
 
+std::vector<models::BlockEvent> CompositeBlock::take_event_log() {
+  std::vector<models::BlockEvent> all;
+  for (auto& node : plan_.nodes())
+    for (auto& e : node.block->take_event_log()) {
+      e.kind = node.name() + "." + e.kind;
+      all.push_back(std::move(e));
+    }
+  return all;
+}
+
 std::vector<double> CompositeBlock::save_discrete_state() const {
   std::vector<double> all;
   for (const auto& node : plan_.nodes()) {

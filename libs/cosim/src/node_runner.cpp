@@ -1,6 +1,7 @@
 #include "mechsim/cosim/node_runner.h"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <stdexcept>
@@ -60,6 +61,22 @@ void copy_stats(const solve::SolverStats* s, transport::StatusMessage& m) {
   m.last_order = s->last_order;
 }
 
+// One JSON line per event, and a line in the node's log.
+void log_event(const models::BlockEvent& ev, const std::unique_ptr<std::FILE, int (*)(std::FILE*)>& file) {
+  std::string line = "{\"kind\": \"" + ev.kind + "\", \"t_s\": " + std::to_string(ev.t);
+  char buf[64];
+  for (const auto& [name, value] : ev.values) {
+    std::snprintf(buf, sizeof buf, "%.17g", value);
+    line += ", \"" + name + "\": " + (std::isfinite(value) ? std::string(buf) : std::string("null"));
+  }
+  line += "}";
+  std::printf("event: %s\n", line.c_str());
+  if (file) {
+    std::fprintf(file.get(), "%s\n", line.c_str());
+    std::fflush(file.get());
+  }
+}
+
 }  // namespace
 
 int run_node(ScenePlan& plan, const std::string& node_name, transport::Participant& participant,
@@ -78,6 +95,10 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
     for (const auto& edge : node.inputs) readers.push_back(participant.create_reader(edge.topic, *edge.type));
 
     NodeStepper stepper(node, scene.time);
+    // Events the block reports (lift-off, landing, ...): JSON lines for the launcher's summary.
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> events_file(nullptr, &std::fclose);
+    if (!options.run_dir.empty())
+      events_file.reset(std::fopen((options.run_dir + "/" + node_name + ".events.jsonl").c_str(), "w"));
     std::unique_ptr<OutputLogWriter> log;
     if (!options.run_dir.empty()) {
       std::vector<std::string> columns;
@@ -151,8 +172,8 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
       while (initialised && stepper.can_step()) {
         stepper.step(values);
         publish();
-        for (const auto& ev : stepper.take_events())
-          std::printf("event: t=%.9g function %d direction %+d\n", ev.t, ev.function_index, ev.direction);
+        stepper.take_events();  // the block's own event log below says what they meant
+        for (const auto& ev : node.block->take_event_log()) log_event(ev, events_file);
         if (stepper.finished()) break;
         drain();
         beat.tick();

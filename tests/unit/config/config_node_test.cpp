@@ -1,12 +1,12 @@
 #include "mechsim/config/config_node.h"
 
+#include <gtest/gtest.h>
+
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
 #include <string>
-
-#include <gtest/gtest.h>
 
 namespace mechsim::config {
 namespace {
@@ -75,8 +75,10 @@ TEST(ConfigNode, ReadsValidValues) {
   const ConfigNode root = scene();
   EXPECT_EQ(root.string("scene"), "demo");
   // 30 rpm = pi rad/s; one multiplication by 2*pi/60, so within a few ulp.
-  EXPECT_NEAR(root.child("participants").child("cam").child("params").quantity(
-                  "speed", dim::angular_velocity),
+  EXPECT_NEAR(root.child("participants")
+                  .child("cam")
+                  .child("params")
+                  .quantity("speed", dim::angular_velocity),
               std::numbers::pi, 1e-15);
   EXPECT_EQ(root.child("time").positive_quantity("step", dim::time), 1e-3);
 }
@@ -99,15 +101,17 @@ TEST(ConfigNode, EmptyValueCountsAsMissing) {
 }
 
 TEST(ConfigNode, UnknownKey) {
-  const ConfigNode p = ConfigNode::from_string("params: {masss: 2 kg, stiffness: 9 N/mm}", "a.yaml")
-                           .child("params");
+  const ConfigNode p =
+      ConfigNode::from_string("params: {masss: 2 kg, stiffness: 9 N/mm}", "a.yaml").child("params");
   const ConfigError e = error_of([&] { p.allow_only({"mass", "stiffness"}); });
   EXPECT_STREQ(e.what(),
                "a.yaml: params.masss: unknown key 'masss'; allowed: mass, stiffness (did you "
                "mean 'mass'?)");
   EXPECT_NO_THROW(p.allow_only({"masss", "stiffness", "other"}));
   // No suggestion when nothing is close.
-  EXPECT_STREQ(error_of([&] { p.allow_only({"stiffness", "length"}); }).what(),
+  EXPECT_STREQ(error_of([&] {
+                 p.allow_only({"stiffness", "length"});
+               }).what(),
                "a.yaml: params.masss: unknown key 'masss'; allowed: stiffness, length");
 }
 
@@ -130,8 +134,9 @@ TEST(ConfigNode, NonPhysicalValues) {
   const ConfigNode p = follower_params();
   EXPECT_EQ(error_of([&] { p.positive_quantity("zero_mass", dim::mass); }).expected(),
             "expected a value > 0, got '0 kg'");
-  EXPECT_EQ(error_of([&] { p.non_negative_quantity("negative_damping", dim::viscous_damping); })
-                .expected(),
+  EXPECT_EQ(error_of([&] {
+              p.non_negative_quantity("negative_damping", dim::viscous_damping);
+            }).expected(),
             "expected a value >= 0, got '-1 N s/m'");
   EXPECT_EQ(p.non_negative_quantity("zero_damping", dim::viscous_damping), 0.0);
   EXPECT_EQ(p.positive_quantity_or("absent", dim::mass, 1.0), 1.0);
@@ -142,7 +147,9 @@ TEST(ConfigNode, NonPhysicalValues) {
 
 TEST(ConfigNode, Choice) {
   const ConfigNode root = ConfigNode::from_string("mode: fast", "s.yaml");
-  EXPECT_STREQ(error_of([&] { root.choice("mode", {"lockstep", "realtime"}); }).what(),
+  EXPECT_STREQ(error_of([&] {
+                 root.choice("mode", {"lockstep", "realtime"});
+               }).what(),
                "s.yaml: mode: expected one of 'lockstep', 'realtime', got 'fast'");
   EXPECT_EQ(root.choice("mode", {"slow", "fast"}), "fast");
   EXPECT_EQ(root.choice_or("other", {"a", "b"}, "b"), "b");
@@ -221,10 +228,11 @@ TEST(ConfigNode, LoadFile) {
   }
   const ConfigNode root = ConfigNode::load_file(path);
   EXPECT_EQ(root.file(), path);
-  EXPECT_EQ(error_of([&] { root.child("participants").child("follower").child("params").quantity(
-                               "mass", dim::mass); })
-                .file(),
-            path);
+  EXPECT_EQ(
+      error_of([&] {
+        root.child("participants").child("follower").child("params").quantity("mass", dim::mass);
+      }).file(),
+      path);
   std::remove(path.c_str());
 }
 
@@ -232,8 +240,10 @@ TEST(ConfigNode, OverrideReplacesAScalar) {
   ConfigNode root = scene();
   root.set_override("participants.cam.params.speed", "60 rpm");
   // 60 rpm = 2 pi rad/s, a single multiplication: a few ulp.
-  EXPECT_NEAR(root.child("participants").child("cam").child("params").quantity(
-                  "speed", dim::angular_velocity),
+  EXPECT_NEAR(root.child("participants")
+                  .child("cam")
+                  .child("params")
+                  .quantity("speed", dim::angular_velocity),
               2 * std::numbers::pi, 1e-15);
   EXPECT_NE(root.to_yaml().find("speed: 60 rpm"), std::string::npos) << root.to_yaml();
 }
@@ -250,9 +260,9 @@ TEST(ConfigNode, OverrideCreatesMissingMaps) {
   EXPECT_EQ(empty.child("a").string("b"), "x");
   // A misspelt key set from the command line is caught like one in the file.
   root.set_override("participants.cam.params.sped", "1 rpm");
-  EXPECT_EQ(error_of([&] { root.child("participants").child("cam").child("params").allow_only(
-                               {"speed"}); })
-                .key_path(),
+  EXPECT_EQ(error_of([&] {
+              root.child("participants").child("cam").child("params").allow_only({"speed"});
+            }).key_path(),
             "participants.cam.params.sped");
 }
 
@@ -273,8 +283,8 @@ TEST(ConfigNode, OverrideRefusals) {
                "scene.yaml: participants.cam.params.speed.value: cannot set this value: "
                "'participants.cam.params.speed' is a value, not a map");
   EXPECT_THROW(root.set_override("participants.cam", "5"), ConfigError);  // a map
-  EXPECT_THROW(root.set_override("law", "5"), ConfigError);                // a list
-  EXPECT_THROW(root.set_override("law.kind", "5"), ConfigError);           // key into a list
+  EXPECT_THROW(root.set_override("law", "5"), ConfigError);               // a list
+  EXPECT_THROW(root.set_override("law.kind", "5"), ConfigError);          // key into a list
   EXPECT_THROW(root.set_override("a..b", "5"), ConfigError);
   EXPECT_THROW(root.set_override("", "5"), ConfigError);
   EXPECT_THROW(root.set_override("law[x].kind", "5"), ConfigError);

@@ -1,8 +1,8 @@
 #include "mechsim/config/hash.h"
 
-#include <string>
-
 #include <gtest/gtest.h>
+
+#include <string>
 
 namespace mechsim::config {
 namespace {

@@ -1,10 +1,10 @@
 #include "mechsim/config/units.h"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <numbers>
 #include <string>
-
-#include <gtest/gtest.h>
 
 namespace mechsim::config {
 namespace {
@@ -97,15 +97,15 @@ TEST(Units, Prefixes) {
 }
 
 TEST(Units, AmbiguousSymbolsResolveAsDocumented) {
-  expect_si("1 m", dim::length, 1.0);      // metre, not a bare prefix
-  expect_si("1 mm", dim::length, 1e-3);    // millimetre
-  expect_si("1 min", dim::time, 60.0);     // minute, not milli-"in"
-  expect_si("1 ms", dim::time, 1e-3);      // millisecond, not metre-second
+  expect_si("1 m", dim::length, 1.0);    // metre, not a bare prefix
+  expect_si("1 mm", dim::length, 1e-3);  // millimetre
+  expect_si("1 min", dim::time, 60.0);   // minute, not milli-"in"
+  expect_si("1 ms", dim::time, 1e-3);    // millisecond, not metre-second
   expect_si("1 m s", dim::length * dim::time, 1.0);
   expect_si("1 mHz", dim::frequency, 1e-3);
-  expect_si("1 Nm", dim::torque, 1.0);     // newton metre ...
-  expect_si("1 nm", dim::length, 1e-9);    // ... nanometre
-  expect_si("1 h", dim::time, 3600.0);     // hour, not a prefix
+  expect_si("1 Nm", dim::torque, 1.0);   // newton metre ...
+  expect_si("1 nm", dim::length, 1e-9);  // ... nanometre
+  expect_si("1 h", dim::time, 3600.0);   // hour, not a prefix
 }
 
 TEST(Units, CompoundUnitsAndExponents) {
@@ -168,18 +168,18 @@ TEST(Units, Refusals) {
       "25 kgg",     // unknown unit
       "5 furlong",  // unknown unit
       "25 mm extra",
-      "1,5 mm",     // decimal comma
-      "inf",        // not a finite number
+      "1,5 mm",  // decimal comma
+      "inf",     // not a finite number
       "nan",
-      "1e999 m",    // overflows
+      "1e999 m",     // overflows
       "1e300 km^3",  // finite number, overflowing SI value
-      "3 m^x",      // exponent not an integer
+      "3 m^x",       // exponent not an integer
       "3 m^",
-      "3 N/",       // nothing after the slash
-      "3 ^2",       // exponent without a unit
+      "3 N/",            // nothing after the slash
+      "3 ^2",            // exponent without a unit
       "0.05 V/(rad/s)",  // parentheses
-      "3 mrad",     // no prefixes on rad
-      "3 kmin",     // nor on min
+      "3 mrad",          // no prefixes on rad
+      "3 kmin",          // nor on min
   };
   for (const char* text : bad) {
     SCOPED_TRACE(text);
@@ -191,7 +191,8 @@ TEST(Units, RefusalMessagesSayWhatWasExpected) {
   EXPECT_EQ(message_of("25 mm", dim::mass), "expected a mass, e.g. '25 kg', got '25 mm'");
   EXPECT_EQ(message_of("25 kgg", dim::mass),
             "expected a mass, e.g. '25 kg', got '25 kgg' (unknown unit 'kgg')");
-  EXPECT_EQ(message_of("", dim::length), "expected a length, e.g. '25 mm', got '' (the value is empty)");
+  EXPECT_EQ(message_of("", dim::length),
+            "expected a length, e.g. '25 mm', got '' (the value is empty)");
   EXPECT_NE(message_of("3 m2", dim::pressure).find("write exponents with '^'"), std::string::npos);
   try {
     parse_quantity("25 kgg");
@@ -205,14 +206,34 @@ TEST(Units, Describe) {
   EXPECT_EQ(describe(dim::length), "a length, e.g. '25 mm'");
   EXPECT_EQ(describe(dim::stiffness), "a stiffness, e.g. '9 N/mm'");
   // Every example in a description must itself parse to the described dimension.
-  const Dimension named[] = {
-      dim::dimensionless, dim::length, dim::mass, dim::time, dim::current, dim::angle,
-      dim::angular_velocity, dim::angular_acceleration, dim::velocity, dim::acceleration,
-      dim::frequency, dim::force, dim::torque, dim::power, dim::stiffness,
-      dim::torsional_stiffness, dim::inertia, dim::viscous_damping, dim::rotational_damping,
-      dim::voltage, dim::resistance, dim::inductance, dim::pressure, dim::density,
-      dim::dynamic_viscosity, dim::kinematic_viscosity, dim::back_emf_constant,
-      dim::torque_constant};
+  const Dimension named[] = {dim::dimensionless,
+                             dim::length,
+                             dim::mass,
+                             dim::time,
+                             dim::current,
+                             dim::angle,
+                             dim::angular_velocity,
+                             dim::angular_acceleration,
+                             dim::velocity,
+                             dim::acceleration,
+                             dim::frequency,
+                             dim::force,
+                             dim::torque,
+                             dim::power,
+                             dim::stiffness,
+                             dim::torsional_stiffness,
+                             dim::inertia,
+                             dim::viscous_damping,
+                             dim::rotational_damping,
+                             dim::voltage,
+                             dim::resistance,
+                             dim::inductance,
+                             dim::pressure,
+                             dim::density,
+                             dim::dynamic_viscosity,
+                             dim::kinematic_viscosity,
+                             dim::back_emf_constant,
+                             dim::torque_constant};
   for (const Dimension& d : named) {
     const std::string text = describe(d);
     SCOPED_TRACE(text);

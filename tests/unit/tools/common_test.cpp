@@ -1,3 +1,5 @@
+#include <gtest/gtest.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -9,12 +11,10 @@
 #include <string>
 #include <vector>
 
-#include <gtest/gtest.h>
-
 #include "csv.h"
 #include "json_io.h"
-#include "provenance.h"
 #include "mechsim/config/hash.h"
+#include "provenance.h"
 
 namespace mechsim::tools {
 namespace {
@@ -35,7 +35,7 @@ std::vector<double> numbers_of(const std::string& csv_line) {
   return out;
 }
 
-// A fresh, empty directory per test.
+// A fresh, empty directory per test (removed at its end when the test passes).
 fs::path scratch_dir(const std::string& name) {
   const fs::path dir = fs::path(::testing::TempDir()) / ("mechsim_common_test_" + name);
   fs::remove_all(dir);
@@ -53,6 +53,7 @@ TEST(JsonIo, WritesPrettyJsonThatReadsBackAndLeavesNoTemporaryFile) {
   EXPECT_EQ(nlohmann::json::parse(text), doc);
   EXPECT_NE(text.find("\n  \"schema_version\": \"1\""), std::string::npos) << text;
   EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
+  fs::remove_all(dir);
 }
 
 TEST(JsonIo, FailureNamesThePath) {
@@ -81,6 +82,7 @@ TEST(Csv, HeaderAndRowsReadBackExactly) {
   std::getline(lines, line);
   EXPECT_EQ(numbers_of(line), (std::vector<double>{0.1, -1e300, 42.0}));
   EXPECT_FALSE(std::getline(lines, line));  // exactly two rows
+  fs::remove_all(dir);
 }
 
 TEST(Csv, ShapeMismatchIsRefused) {
@@ -88,6 +90,7 @@ TEST(Csv, ShapeMismatchIsRefused) {
   EXPECT_THROW(write_csv(path, {"a", "b"}, {{1.0}}), std::invalid_argument);
   EXPECT_THROW(write_csv(path, {"a", "b"}, {{1.0, 2.0}, {1.0}}), std::invalid_argument);
   EXPECT_FALSE(fs::exists(path));
+  fs::remove_all(fs::path(path).parent_path());
 }
 
 TEST(Provenance, HashesTheSceneFile) {
@@ -108,6 +111,7 @@ TEST(Provenance, HashesTheSceneFile) {
   for (const auto& [vendor, version] : p.at("dds").items()) {
     EXPECT_TRUE(version.is_string() && !version.get<std::string>().empty()) << vendor;
   }
+  fs::remove_all(dir);
 }
 
 TEST(Provenance, WithoutSceneAndWithAMissingScene) {

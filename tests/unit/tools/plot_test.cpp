@@ -1,13 +1,13 @@
 #include "plot.h"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <iterator>
 #include <string>
-
-#include <gtest/gtest.h>
 
 namespace mechsim::plot {
 namespace {
@@ -38,14 +38,16 @@ Figure two_panel_figure() {
     decay.x.push_back(0.5 * i);
     decay.y.push_back(std::exp(-0.5 * i));
   }
-  Panel top{.title = "Signals: it's a \"test\"", .xlabel = "t [s]", .ylabel = "value [-]",
+  Panel top{.title = "Signals: it's a \"test\"",
+            .xlabel = "t [s]",
+            .ylabel = "value [-]",
             .series = {sine, cosine}};
   top.yrange = std::make_pair(-1.5, 1.5);
   top.hlines = {{1.0, "upper limit"}, {-1.0, "lower limit"}};
   Panel bottom{.title = "Decay", .xlabel = "t [s]", .ylabel = "y", .series = {decay}};
   bottom.logy = true;
-  return Figure{.title = "Two panels", .panels = {top, bottom}, .width_px = 800,
-                .height_px_per_panel = 300};
+  return Figure{
+      .title = "Two panels", .panels = {top, bottom}, .width_px = 800, .height_px_per_panel = 300};
 }
 
 TEST(Plot, TwoPanelFigureIsAPngOfTheRequestedSize) {
@@ -98,8 +100,7 @@ TEST(Plot, UnwritableDestinationIsReportedNotThrown) {
   if (!gnuplot_available()) GTEST_SKIP() << "gnuplot is not installed";
   std::string why;
   EXPECT_FALSE(write_png(two_panel_figure(), "/nonexistent-mechsim-dir/figure.png", &why));
-  EXPECT_NE(why.find("cannot write /nonexistent-mechsim-dir/figure.png"), std::string::npos)
-      << why;
+  EXPECT_NE(why.find("cannot write /nonexistent-mechsim-dir/figure.png"), std::string::npos) << why;
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <numbers>
 
 #include "mechsim/cosim/catalog.h"
+#include "mechsim/cosim/node_params.h"
 #include "mechsim/models/cam/cam_shaft_block.h"
 
 namespace mechsim::cosim {
@@ -11,9 +12,7 @@ namespace cam = models::cam;
 using config::ConfigNode;
 namespace dim = config::dim;
 
-namespace {
-
-cam::MotionLaw parse_law(const ConfigNode& law) {
+cam::MotionLaw parse_motion_law(const ConfigNode& law) {
   if (!law.is_sequence() || law.size() == 0)
     law.fail("expected a list of segments {type, start, span, lift}");
   std::vector<cam::Segment> segments;
@@ -45,14 +44,20 @@ cam::MotionLaw parse_law(const ConfigNode& law) {
   }
 }
 
-std::unique_ptr<models::Block> make_cam_shaft(const ConfigNode& p) {
+cam::CamShaftParams parse_cam_shaft_params(const ConfigNode& p) {
   p.allow_only({"speed", "pitch_radius", "eccentricity", "initial_angle", "law"});
-  cam::CamShaftParams params{parse_law(p.child("law")), p.positive_quantity("pitch_radius", dim::length),
+  cam::CamShaftParams params{parse_motion_law(p.child("law")), p.positive_quantity("pitch_radius", dim::length),
                              p.quantity_or("eccentricity", dim::length, 0.0), p.positive_quantity("speed", dim::angular_velocity),
                              p.quantity_or("initial_angle", dim::angle, 0.0)};
   if (std::abs(params.eccentricity) >= params.pitch_radius)
     p.child("eccentricity").fail("expected |eccentricity| below the pitch radius");
-  return std::make_unique<cam::CamShaftBlock>(std::move(params));
+  return params;
+}
+
+namespace {
+
+std::unique_ptr<models::Block> make_cam_shaft(const ConfigNode& p) {
+  return std::make_unique<cam::CamShaftBlock>(parse_cam_shaft_params(p));
 }
 
 }  // namespace

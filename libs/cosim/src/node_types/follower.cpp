@@ -1,6 +1,7 @@
 // Node type `follower`: the translating roller follower (rigid, kinetostatic), publishing
 // <name>/state (FollowerState). Reads the cam shaft's CamState.
 #include "mechsim/cosim/catalog.h"
+#include "mechsim/cosim/node_params.h"
 #include "mechsim/models/follower/follower_block.h"
 
 namespace mechsim::cosim {
@@ -9,12 +10,12 @@ namespace fol = models::follower;
 using config::ConfigNode;
 namespace dim = config::dim;
 
-namespace {
-
-std::unique_ptr<models::Block> make_follower(const ConfigNode& p) {
-  p.allow_only({"model", "mass", "spring", "loads"});
-  p.choice_or("model", {"rigid"}, "rigid");
-  fol::FollowerParams params;
+FollowerConfig parse_follower_params(const ConfigNode& p) {
+  p.allow_only({"model", "mass", "spring", "loads", "roller_radius"});
+  FollowerConfig config;
+  config.model = p.choice_or("model", {"rigid"}, "rigid");
+  config.roller_radius = p.non_negative_quantity_or("roller_radius", dim::length, 0.0);
+  fol::FollowerParams& params = config.params;
   params.mass = p.positive_quantity("mass", dim::mass);
   if (auto spring = p.optional_child("spring")) {
     spring->allow_only({"stiffness", "preload"});
@@ -31,7 +32,13 @@ std::unique_ptr<models::Block> make_follower(const ConfigNode& p) {
       params.loads.push_back(load);
     }
   }
-  return std::make_unique<fol::FollowerBlock>(std::move(params));
+  return config;
+}
+
+namespace {
+
+std::unique_ptr<models::Block> make_follower(const ConfigNode& p) {
+  return std::make_unique<fol::FollowerBlock>(parse_follower_params(p).params);
 }
 
 }  // namespace

@@ -7,6 +7,8 @@
 // as missing. Duplicate keys in a map are refused when the document is loaded.
 #pragma once
 
+#include <yaml-cpp/yaml.h>
+
 #include <cstddef>
 #include <initializer_list>
 #include <optional>
@@ -14,8 +16,6 @@
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include <yaml-cpp/yaml.h>
 
 #include "mechsim/config/units.h"
 
@@ -87,8 +87,7 @@ class ConfigNode {
   double quantity_or(std::string_view key, Dimension expected, double default_si) const;
   double positive_quantity(std::string_view key, Dimension expected) const;      // > 0
   double non_negative_quantity(std::string_view key, Dimension expected) const;  // >= 0
-  double positive_quantity_or(std::string_view key, Dimension expected,
-                              double default_si) const;
+  double positive_quantity_or(std::string_view key, Dimension expected, double default_si) const;
   double non_negative_quantity_or(std::string_view key, Dimension expected,
                                   double default_si) const;
   double number(std::string_view key) const;

@@ -78,6 +78,9 @@ struct Scene {
   std::vector<ConnectionSpec> connections;
   std::vector<SignalRef> compare;
   std::vector<ReportSpec> report;
+  // Settings of the analyses (`mechsim cam-design`, ...): read by the analysis commands,
+  // ignored by a time run.
+  std::optional<ConfigNode> design;
   ConfigNode root;  // the whole document (with overrides applied)
 
   const ParticipantSpec* find_participant(const std::string& name) const;

@@ -67,25 +67,25 @@ inline constexpr Dimension angular_acceleration = angle / time.pow(2);
 inline constexpr Dimension velocity = length / time;
 inline constexpr Dimension acceleration = length / time.pow(2);
 inline constexpr Dimension frequency = dimensionless / time;
-inline constexpr Dimension force = mass * acceleration;                    // N
-inline constexpr Dimension torque = force * length;                        // N m
-inline constexpr Dimension energy = force * length;                        // J (= torque)
-inline constexpr Dimension power = energy / time;                          // W
-inline constexpr Dimension stiffness = force / length;                     // N/m
-inline constexpr Dimension torsional_stiffness = torque / angle;           // N m/rad
-inline constexpr Dimension inertia = mass * length.pow(2);                 // kg m^2
-inline constexpr Dimension viscous_damping = force * time / length;        // N s/m
-inline constexpr Dimension rotational_damping = torque * time / angle;     // N m s/rad
-inline constexpr Dimension voltage = power / current;                      // V
-inline constexpr Dimension resistance = voltage / current;                 // ohm
-inline constexpr Dimension inductance = voltage * time / current;          // H
-inline constexpr Dimension pressure = force / length.pow(2);               // Pa (also stress)
-inline constexpr Dimension density = mass / length.pow(3);                 // kg/m^3
-inline constexpr Dimension dynamic_viscosity = pressure * time;            // Pa s
-inline constexpr Dimension kinematic_viscosity = length.pow(2) / time;     // m^2/s
-inline constexpr Dimension back_emf_constant = voltage * time / angle;     // V s/rad
-inline constexpr Dimension tacho_constant = back_emf_constant;             // V s/rad
-inline constexpr Dimension torque_constant = torque / current;             // N m/A
+inline constexpr Dimension force = mass * acceleration;                 // N
+inline constexpr Dimension torque = force * length;                     // N m
+inline constexpr Dimension energy = force * length;                     // J (= torque)
+inline constexpr Dimension power = energy / time;                       // W
+inline constexpr Dimension stiffness = force / length;                  // N/m
+inline constexpr Dimension torsional_stiffness = torque / angle;        // N m/rad
+inline constexpr Dimension inertia = mass * length.pow(2);              // kg m^2
+inline constexpr Dimension viscous_damping = force * time / length;     // N s/m
+inline constexpr Dimension rotational_damping = torque * time / angle;  // N m s/rad
+inline constexpr Dimension voltage = power / current;                   // V
+inline constexpr Dimension resistance = voltage / current;              // ohm
+inline constexpr Dimension inductance = voltage * time / current;       // H
+inline constexpr Dimension pressure = force / length.pow(2);            // Pa (also stress)
+inline constexpr Dimension density = mass / length.pow(3);              // kg/m^3
+inline constexpr Dimension dynamic_viscosity = pressure * time;         // Pa s
+inline constexpr Dimension kinematic_viscosity = length.pow(2) / time;  // m^2/s
+inline constexpr Dimension back_emf_constant = voltage * time / angle;  // V s/rad
+inline constexpr Dimension tacho_constant = back_emf_constant;          // V s/rad
+inline constexpr Dimension torque_constant = torque / current;          // N m/A
 }  // namespace dim
 
 // A parse failure. what() reads as the tail of a configuration error, e.g.
@@ -97,8 +97,8 @@ class UnitError : public std::runtime_error {
 
 struct Quantity {
   double value_si = 0.0;
-  Dimension dimension;     // dimensionless for a bare number
-  bool has_unit = false;   // false for a bare number (SI in whatever dimension is expected)
+  Dimension dimension;    // dimensionless for a bare number
+  bool has_unit = false;  // false for a bare number (SI in whatever dimension is expected)
 };
 
 // Parses "<number> [<unit expression>]" into SI. Throws UnitError.

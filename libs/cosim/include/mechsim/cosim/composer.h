@@ -30,6 +30,8 @@ class CompositeBlock final : public models::Block {
                        std::span<double> g) const override;
   bool handle_events(double t, std::span<double> x, std::span<const double> u,
                      std::span<const int> crossed) override;
+  // Events of every block, with the kind prefixed by the participant ("follower.lift_off").
+  std::vector<models::BlockEvent> take_event_log() override;
   std::vector<double> save_discrete_state() const override;
   void restore_discrete_state(std::span<const double> saved) override;
 

@@ -15,6 +15,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace mechsim::models {
@@ -32,6 +33,14 @@ struct OutputPort {
   // Inputs (by index) that reach this output without passing through a state: direct
   // feedthrough. The composer orders output evaluation by it and refuses algebraic loops.
   std::vector<int> feedthrough;
+};
+
+// Something a block reports about an event it handled (a follower lift-off with its
+// angle, a landing with its impact velocity), for the run summary and the node log.
+struct BlockEvent {
+  std::string kind;  // "lift_off", "landing", ...
+  double t = 0.0;
+  std::vector<std::pair<std::string, double>> values;  // name (with unit suffix) -> value
 };
 
 // Direction of a zero crossing that counts as an event.
@@ -77,6 +86,10 @@ class Block {
                              std::span<const int> /*crossed*/) {
     return false;
   }
+
+  // Events handled since the last call, described for people (see BlockEvent). A block
+  // that reports events keeps them from handle_events until they are taken.
+  virtual std::vector<BlockEvent> take_event_log() { return {}; }
 
   // --- sampled part -------------------------------------------------------------------
   // A sampled block returns its sample time (> 0); discrete_update is then called at
