@@ -98,6 +98,16 @@ void Run::fail(RunOutcome& out, const std::string& node, const std::string& reas
   out.reason = reason;
   auto it = watch_.find(node);
   out.failed_step = it != watch_.end() && it->second.seen ? it->second.last.header.step : 0;
+  // The node's own output log knows its last step better than the last heartbeat did.
+  try {
+    const std::string path = run_dir_ + "/" + node + ".outputs.bin";
+    if (!node.empty() && fs::exists(path)) {
+      const std::size_t rows = cosim::read_output_log(path).rows();
+      if (rows > 0) out.failed_step = std::max<std::uint64_t>(out.failed_step, rows - 1);
+    }
+  } catch (const std::exception&) {
+    // a log too damaged to read: keep the heartbeat's figure
+  }
 }
 
 void Run::print_progress(double since_start, bool final_line) {

@@ -23,5 +23,6 @@ void add_scene_args(CLI::App* cmd, SceneArgs& args);
 void add_launch_command(CLI::App& app, int& exit_code);
 void add_reference_command(CLI::App& app, int& exit_code);
 void add_check_command(CLI::App& app, int& exit_code);
+void add_cam_design_command(CLI::App& app, int& exit_code);
 
 }  // namespace mechsim::tools

@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
   mechsim::tools::add_launch_command(app, exit_code);
   mechsim::tools::add_reference_command(app, exit_code);
   mechsim::tools::add_check_command(app, exit_code);
+  mechsim::tools::add_cam_design_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -27,7 +27,9 @@ TEST(MotorTachoBlockTest, Topology) {
 
 TEST(MotorTachoBlockTest, DerivativesEqualTheStateSpaceModel) {
   const MotorTachoParams params;
-  const MotorTachoBlock dut({params});
+  MotorTachoBlockOptions options;
+  options.motor = params;
+  const MotorTachoBlock dut(options);
   const auto ss = state_space(params);
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> uniform(-1.0, 1.0);
@@ -49,8 +51,9 @@ TEST(MotorTachoBlockTest, SettlesAtTheDcGainWithTheLoadTorqueUnconnected) {
   MotorTachoBlock dut;
   std::vector<double> u = dut.default_inputs();
   u[dut.input_index("armature_voltage")] = 10.0;
-  // The slowest pole is −106.6 s⁻¹: after 0.2 s its transient is e^(−21) ≈ 1e-9 of the step.
-  const auto tr = testing::integrate_rk4(dut, 0.2, 1e-5, u);
+  // The slowest decay is the shaft pair's, −37.6 s⁻¹: after 0.6 s its transient is
+  // e^(−22.6) ≈ 1.5e-10 of the step.
+  const auto tr = testing::integrate_rk4(dut, 0.6, 1e-5, u, 1000);
   EXPECT_NEAR(tr.outputs.back()[dut.output_index("tacho_voltage")], 0.248 * 10.0, 1e-6);
 }
 
@@ -82,7 +85,9 @@ TEST(MotorTachoBlockTest, CompliantCouplingEvaluatesTheSpringDamper) {
 TEST(MotorTachoBlockTest, RejectsNonPhysicalParameters) {
   MotorTachoParams p;
   p.tacho_inertia = 0;
-  EXPECT_THROW(MotorTachoBlock({p}), std::invalid_argument);
+  MotorTachoBlockOptions options;
+  options.motor = p;
+  EXPECT_THROW(MotorTachoBlock{options}, std::invalid_argument);
 }
 
 }  // namespace

@@ -71,7 +71,9 @@ TEST(SlideBlockTest, Topology) {
   modal.variant = SlideVariant::modal;
   modal.modal_shapes = 5;
   EXPECT_EQ(SlideBlock(modal).num_states(), 10);
-  EXPECT_EQ(SlideBlock(SlideBlockOptions{.variant = SlideVariant::rigid}).num_states(), 2);
+  SlideBlockOptions rigid;
+  rigid.variant = SlideVariant::rigid;
+  EXPECT_EQ(SlideBlock(rigid).num_states(), 2);
 }
 
 TEST(SlideBlockTest, RigidSlideUnderConstantTorqueFollowsTheClosedForm) {

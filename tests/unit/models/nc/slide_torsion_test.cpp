@@ -69,7 +69,7 @@ TEST(SlideTorsionTest, FrequencyAgainstPositionPeaksAtTheNode) {
   const SlideDriveData d = SlideDriveData::report_cnc200();
   std::vector<double> positions;
   const double step = 0.01;
-  for (double x = 0; x <= d.spindle_length + 1e-12; x += step) positions.push_back(x);
+  for (int i = 0; i <= 150; ++i) positions.push_back(i * step);  // 0 .. l = 1.5 m
   const auto sweep = frequency_vs_slide_position(d, positions);
   auto best = sweep.begin();
   for (auto it = sweep.begin(); it != sweep.end(); ++it)
@@ -126,7 +126,8 @@ TEST(SlideTorsionTest, FeChainOfABareShaftMatchesItsAnalyticModes) {
     const double h_ratio = n * std::numbers::pi / elements;
     EXPECT_NEAR(f(n), exact * (1 - h_ratio * h_ratio / 24), 1e-3 * exact * h_ratio * h_ratio) << n;
   }
-  EXPECT_NEAR(f(0), 0.0, 1e-6 * f(1));  // the rigid mode
+  // The rigid mode: its ω² is round-off against ω1² (1e-16 times the matrix condition).
+  EXPECT_LT(f(0) * f(0), 1e-9 * f(1) * f(1));
   // Ritz with cosines is exact for the bare shaft.
   const Eigen::VectorXd r = ritz_frequencies_hz(shaft, {}, 4);
   for (int n = 1; n <= 3; ++n) EXPECT_NEAR(r(n), n * wave_speed / (2 * shaft.length), 1e-9 * r(n));

@@ -77,6 +77,7 @@ struct Resonance {
   double damping_ratio;       // −Re p / |p|
   bool is_local_maximum;      // false: no interior maximum near the pair; f_r = natural frequency
 };
+// Throws std::domain_error when the shaft mode is overdamped (no complex pole pair).
 Resonance resonance(const MotorTachoParams& p);
 
 // The report's approximations (3)–(5) [Hz]: slow pole c²/(R_a(I1+I2))/2π, electrical pole

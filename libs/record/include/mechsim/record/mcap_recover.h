@@ -1,0 +1,30 @@
+// Rebuilding a complete MCAP file (with summary and index) from a recording that was cut
+// short, e.g. by a crash of the recorder.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace mechsim::record {
+
+struct RecoveryReport {
+  bool input_complete = false;  // the input already had Footer + magic
+  uint64_t input_size = 0;
+  uint64_t scan_end = 0;         // first byte of the input that was not kept
+  std::string stop_reason;       // why the scan of the input stopped there
+  uint64_t schemas = 0;          // records kept
+  uint64_t channels = 0;
+  uint64_t chunks = 0;
+  uint64_t messages = 0;         // in kept chunks and outside chunks
+  uint64_t chunks_dropped = 0;   // complete chunks that failed their CRC or decompression
+};
+
+// Copies every complete record of `in`'s data section to `out` (complete chunks byte for
+// byte, with fresh MessageIndex records; Schema, Channel and Message records outside chunks
+// as they are), then writes DataEnd, summary, SummaryOffsets, Footer and magic. Works on
+// complete inputs too (it rebuilds their summary). Throws McapError if `in` does not start
+// with the MCAP magic, std::runtime_error if `out` cannot be written. `in` and `out` must
+// differ.
+RecoveryReport recover(const std::string& in, const std::string& out);
+
+}  // namespace mechsim::record

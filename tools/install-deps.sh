@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages mechsim builds and runs with (apt-get), only when one is
+# missing. Used by the README's two commands; safe to run again.
+set -euo pipefail
+
+packages=(
+  cmake g++ make pkg-config git           # build
+  cyclonedds-dev cyclonedds-tools         # DDS (C API, idlc, ddsperf)
+  libsundials-dev                         # CVODE / ARKODE 6.4
+  libeigen3-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev
+  libgtest-dev libbenchmark-dev           # tests, benchmarks
+  gnuplot-nox                             # PNG plots
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+
+sudo=""
+if [ "$(id -u)" -ne 0 ]; then
+  command -v sudo >/dev/null || { echo "install-deps: need root (or sudo) to install: ${missing[*]}" >&2; exit 1; }
+  sudo="sudo"
+fi
+echo "install-deps: installing ${missing[*]}"
+$sudo apt-get update -q
+DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends "${missing[@]}"
