@@ -10,7 +10,11 @@ packages=(
   libeigen3-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev
   libgtest-dev libbenchmark-dev           # tests, benchmarks
   gnuplot-nox                             # PNG plots
+  libzstd-dev liblz4-dev                  # MCAP chunk compression
 )
+# node + npm run the third-party MCAP reader test; machines that already have a Node.js
+# (e.g. from NodeSource, whose nodejs conflicts with Debian's npm) keep theirs.
+command -v node >/dev/null && command -v npm >/dev/null || packages+=(nodejs npm)
 
 missing=()
 for p in "${packages[@]}"; do

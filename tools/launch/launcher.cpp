@@ -74,6 +74,7 @@ class Run {
  private:
   RunOutcome run_nodes();
   void fail(RunOutcome& out, const std::string& node, const std::string& reason);
+  std::string divergence_advice(const std::string& node) const;
   void print_progress(double since_start, bool final_line);
   json summarise(const RunOutcome& out);
 
@@ -90,6 +91,33 @@ class Run {
   std::map<std::string, NodeWatch> watch_;
   bool tty_ = false;
 };
+
+// The last line of a node's log that says "error" (for a node that died before its status
+// carried the message).
+std::string last_error_line(const std::string& log_path) {
+  std::ifstream in(log_path);
+  std::string line, last;
+  while (std::getline(in, line))
+    if (line.find("error") != std::string::npos) last = line;
+  return last;
+}
+
+// Names the connections of a diverged node that cross a cut (those with a coupling element
+// first) and suggests a smaller macro step.
+std::string Run::divergence_advice(const std::string& node) const {
+  std::string cuts;
+  for (const auto& c : scene_.connections)
+    if ((c.from == node || c.to == node) && c.coupling)
+      cuts += (cuts.empty() ? "" : ", ") + c.from + " -> " + c.to + " (" + c.key_path + ", coupling element)";
+  if (cuts.empty())
+    for (const auto& c : scene_.connections)
+      if (c.from == node || c.to == node) cuts += (cuts.empty() ? "" : ", ") + c.from + " -> " + c.to + " (" + c.key_path + ")";
+  char step[64], now[64];
+  std::snprintf(step, sizeof step, "%g us", scene_.time.step / 4 * 1e6);
+  std::snprintf(now, sizeof now, "%g us", scene_.time.step * 1e6);
+  return ". The coupled run is unstable at a macro step of " + std::string(now) + " across " + cuts + "; try a smaller step, e.g. --step '" + step +
+         "' (docs/nc-loop.md lists the measured limits)";
+}
 
 void Run::fail(RunOutcome& out, const std::string& node, const std::string& reason) {
   if (!out.reason.empty()) return;  // keep the first cause
@@ -151,7 +179,10 @@ RunOutcome Run::run_nodes() {
       bool clean = !p->signalled && p->exit_code == 0;
       if (!clean || !running) {
         std::string reason = "node '" + p->name + "' " + p->describe_exit();
-        if (w.seen && !w.last.message.empty()) reason += ": " + w.last.message;
+        std::string message = w.seen ? w.last.message : "";
+        if (message.empty()) message = last_error_line(run_dir_ + "/" + p->name + ".log");
+        if (!message.empty()) reason += ": " + message;
+        if (message.find("diverged") != std::string::npos) reason += divergence_advice(p->name);
         fail(out, p->name, reason);
       }
     }
@@ -356,7 +387,8 @@ int Run::execute() {
       figure.panels.push_back(panel);
     }
     summary["signals"] = signals;
-    summary["report"] = report_extrema(scene_, t, cosim_series);
+    const SeriesLookup reference_lookup = reference_series;
+    summary["report"] = report_figures(scene_, t, cosim_series, &reference_lookup);
     summary["reference"] = {{"rtol", ref.rtol}, {"wall_time_s", ref.wall_time_s}, {"solver", solver_stats_json(ref.stats)}};
     tools::write_csv(run_dir_ + "/signals.csv", csv_header, csv_columns);
     summary["files"] = {{"signals_csv", run_dir_ + "/signals.csv"}};
@@ -380,14 +412,7 @@ int Run::execute() {
       std::printf("  %-32s max |error| %.3g %s (%.3g %% of range), rms %.3g\n", name.c_str(),
                   e["max_abs_error"].get<double>(), e["unit"].get<std::string>().c_str(),
                   100 * e["max_rel_error"].get<double>(), e["rms_abs_error"].get<double>());
-    for (auto& r : summary["report"]) {
-      std::printf("  %s %s = %.6g at t = %.6g s", r["stat"].get<std::string>().c_str(),
-                  r["signal"].get<std::string>().c_str(), r["value"].get<double>(), r["t_s"].get<double>());
-      if (r.contains("at"))
-        std::printf(", %s = %.6g %s", r["at"]["signal"].get<std::string>().c_str(), r["at"]["value"].get<double>(),
-                    r["at"]["unit"].get<std::string>().c_str());
-      std::printf("\n");
-    }
+    print_figures(summary["report"]);
     std::printf("  run folder: %s\n", run_dir_.c_str());
     return 0;
   }

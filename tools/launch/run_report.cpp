@@ -2,30 +2,134 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
+
+#include "mechsim/config/units.h"
 
 namespace mechsim::launch {
 
-nlohmann::json report_extrema(const config::Scene& scene, std::span<const double> t, const SeriesLookup& series) {
-  nlohmann::json out = nlohmann::json::array();
-  for (const auto& r : scene.report) {
-    auto values = series(r.signal);
-    if (values.empty()) continue;
-    auto it = r.stat == "min" ? std::min_element(values.begin(), values.end())
-                              : std::max_element(values.begin(), values.end());
-    const std::size_t i = static_cast<std::size_t>(it - values.begin());
-    nlohmann::json entry{{"stat", r.stat}, {"signal", r.signal.full_name()}, {"value", *it}, {"t_s", t[i]}};
-    if (r.at) {
-      double v = series(*r.at)[i];
+using nlohmann::json;
+
+namespace {
+
+// Time at which y first crosses `level` going from y0's side, linearly interpolated.
+double first_crossing(std::span<const double> t, std::span<const double> y, double level, bool rising) {
+  for (std::size_t i = 1; i < y.size(); ++i) {
+    const bool crossed = rising ? (y[i - 1] < level && y[i] >= level) : (y[i - 1] > level && y[i] <= level);
+    if (crossed) return t[i - 1] + (level - y[i - 1]) / (y[i] - y[i - 1]) * (t[i] - t[i - 1]);
+  }
+  return NAN;
+}
+
+json figure_of(const config::ReportSpec& r, std::span<const double> t, const SeriesLookup& series) {
+  auto y = series(r.signal);
+  if (y.empty()) return nullptr;
+  json f;
+  std::size_t at_index = 0;
+  if (r.stat == "min" || r.stat == "max" || r.stat == "max_abs") {
+    auto it = r.stat == "min" ? std::min_element(y.begin(), y.end())
+              : r.stat == "max" ? std::max_element(y.begin(), y.end())
+                                : std::max_element(y.begin(), y.end(), [](double a, double b) { return std::abs(a) < std::abs(b); });
+    at_index = static_cast<std::size_t>(it - y.begin());
+    f["value"] = r.stat == "max_abs" ? std::abs(*it) : *it;
+    f["t_s"] = t[at_index];
+  } else if (r.stat == "final") {
+    at_index = y.size() - 1;
+    f["value"] = y.back();
+  } else if (r.stat == "time_true") {
+    double on = 0.0;
+    for (std::size_t i = 1; i < y.size(); ++i)
+      if (y[i - 1] > 0.5) on += t[i] - t[i - 1];
+    f["value"] = on;
+  } else if (r.stat == "step_response") {
+    const double target = r.target.empty() ? y.back() : config::parse_quantity(r.target).value_si;
+    StepResponse s = step_response(t, y, target, r.band);
+    f["rise_time_s"] = s.rise_time;
+    f["overshoot_pct"] = 100 * s.overshoot;
+    f["settling_time_s"] = s.settling_time;
+    f["final_value"] = s.final_value;
+    f["final_error"] = s.final_value - target;
+    f["settled"] = s.settled;
+    f["target"] = target;
+    return f;
+  }
+  if (r.at) {
+    auto at = series(*r.at);
+    if (!at.empty()) {
+      double v = at[at_index];
       if (r.at_wrap_turn) v = std::fmod(std::fmod(v, 2 * std::numbers::pi) + 2 * std::numbers::pi, 2 * std::numbers::pi);
-      entry["at"] = {{"signal", r.at->full_name()}, {"value", v / r.at_scale}, {"unit", r.at_unit.empty() ? "SI" : r.at_unit}};
+      f["at"] = {{"signal", r.at->full_name()}, {"value", v / r.at_scale}, {"unit", r.at_unit.empty() ? "SI" : r.at_unit}};
     }
-    out.push_back(entry);
+  }
+  return f;
+}
+
+double relative_difference(double a, double b) {
+  const double scale = std::max(std::abs(b), 1e-300);
+  return std::abs(a - b) / scale;
+}
+
+}  // namespace
+
+StepResponse step_response(std::span<const double> t, std::span<const double> y, double target, double band) {
+  StepResponse s;
+  if (y.size() < 2) return s;
+  const double y0 = y.front(), step = target - y0;
+  const bool rising = step > 0;
+  s.final_value = y.back();
+  s.rise_time = first_crossing(t, y, y0 + 0.9 * step, rising) - first_crossing(t, y, y0 + 0.1 * step, rising);
+  const double peak = rising ? *std::max_element(y.begin(), y.end()) : *std::min_element(y.begin(), y.end());
+  s.overshoot = std::max(0.0, (peak - target) / step);
+  const double tolerance = band * std::abs(step);
+  s.settled = std::abs(y.back() - target) <= tolerance;
+  // Settling: after the last sample outside the band, interpolated onto the band edge.
+  s.settling_time = NAN;
+  if (s.settled) {
+    std::size_t last_out = 0;
+    bool any_out = false;
+    for (std::size_t i = 0; i < y.size(); ++i)
+      if (std::abs(y[i] - target) > tolerance) {
+        last_out = i;
+        any_out = true;
+      }
+    if (!any_out) {
+      s.settling_time = 0.0;
+    } else {
+      const double edge = y[last_out] > target ? target + tolerance : target - tolerance;
+      const std::size_t i = last_out + 1;
+      s.settling_time = t[i - 1] + (edge - y[i - 1]) / (y[i] - y[i - 1]) * (t[i] - t[i - 1]) - t.front();
+    }
+  }
+  return s;
+}
+
+json report_figures(const config::Scene& scene, std::span<const double> t, const SeriesLookup& series,
+                    const SeriesLookup* reference) {
+  json out = json::array();
+  for (const auto& r : scene.report) {
+    json f = figure_of(r, t, series);
+    if (f.is_null()) continue;
+    f["stat"] = r.stat;
+    f["signal"] = r.signal.full_name();
+    if (reference) {
+      json ref = figure_of(r, t, *reference);
+      if (!ref.is_null()) {
+        json diff = json::object();
+        for (const char* key : {"value", "rise_time_s", "settling_time_s", "final_value", "overshoot_pct"})
+          if (f.contains(key) && ref.contains(key) && f[key].is_number() && ref[key].is_number())
+            diff[key] = relative_difference(f[key].get<double>(), ref[key].get<double>());
+        ref.erase("stat");
+        f["reference"] = ref;
+        f["relative_difference"] = diff;
+      }
+    }
+    out.push_back(f);
   }
   return out;
 }
 
-nlohmann::json solver_stats_json(const solve::SolverStats& s) {
+json solver_stats_json(const solve::SolverStats& s) {
   return {{"steps", s.steps},
           {"rhs_evals", s.rhs_evals},
           {"error_test_failures", s.error_test_failures},
@@ -35,6 +139,29 @@ nlohmann::json solver_stats_json(const solve::SolverStats& s) {
           {"restarts", s.restarts},
           {"last_step_s", s.last_step},
           {"last_order", s.last_order}};
+}
+
+void print_figures(const json& figures) {
+  auto number = [](const json& j, const char* key) { return j.contains(key) && j[key].is_number() ? j[key].get<double>() : NAN; };
+  for (const auto& f : figures) {
+    const std::string stat = f["stat"], signal = f["signal"];
+    if (stat == "step_response") {
+      std::printf("  step response of %s: rise %.4g s, overshoot %.3g %%, settling %.4g s, final error %.3g",
+                  signal.c_str(), number(f, "rise_time_s"), number(f, "overshoot_pct"), number(f, "settling_time_s"),
+                  number(f, "final_error"));
+      if (f.contains("reference"))
+        std::printf("  (reference: rise %.4g s, overshoot %.3g %%, settling %.4g s)", number(f["reference"], "rise_time_s"),
+                    number(f["reference"], "overshoot_pct"), number(f["reference"], "settling_time_s"));
+    } else {
+      std::printf("  %s %s = %.6g", stat.c_str(), signal.c_str(), number(f, "value"));
+      if (f.contains("t_s")) std::printf(" at t = %.6g s", number(f, "t_s"));
+      if (f.contains("at"))
+        std::printf(", %s = %.6g %s", f["at"]["signal"].get<std::string>().c_str(), number(f["at"], "value"),
+                    f["at"]["unit"].get<std::string>().c_str());
+      if (f.contains("reference")) std::printf("  (reference %.6g)", number(f["reference"], "value"));
+    }
+    std::printf("\n");
+  }
 }
 
 }  // namespace mechsim::launch

@@ -48,17 +48,10 @@ void add_reference_command(CLI::App& app, int& exit_code) {
                              {"rtol", ref.rtol},
                              {"wall_time_s", ref.wall_time_s},
                              {"solver", launch::solver_stats_json(ref.stats)},
-                             {"report", launch::report_extrema(scene, t, series)}};
+                             {"report", launch::report_figures(scene, t, series)}};
       std::printf("reference of '%s': %ld samples, rtol %g, %ld solver steps, %.3f s wall\n", scene.name.c_str(),
                   scene.time.steps() + 1, ref.rtol, ref.stats.steps, ref.wall_time_s);
-      for (auto& r : summary["report"]) {
-        std::printf("  %s %s = %.6g at t = %.6g s", r["stat"].get<std::string>().c_str(),
-                    r["signal"].get<std::string>().c_str(), r["value"].get<double>(), r["t_s"].get<double>());
-        if (r.contains("at"))
-          std::printf(", %s = %.6g %s", r["at"]["signal"].get<std::string>().c_str(), r["at"]["value"].get<double>(),
-                      r["at"]["unit"].get<std::string>().c_str());
-        std::printf("\n");
-      }
+      launch::print_figures(summary["report"]);
       if (!json_path->empty()) write_json_file(*json_path, summary);
       if (!csv_path->empty()) write_csv(*csv_path, ref.log.columns, ref.log.data);
       exit_code = 0;

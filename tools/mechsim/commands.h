@@ -24,5 +24,7 @@ void add_launch_command(CLI::App& app, int& exit_code);
 void add_reference_command(CLI::App& app, int& exit_code);
 void add_check_command(CLI::App& app, int& exit_code);
 void add_cam_design_command(CLI::App& app, int& exit_code);
+void add_motor_bode_command(CLI::App& app, int& exit_code);
+void add_slide_modes_command(CLI::App& app, int& exit_code);
 
 }  // namespace mechsim::tools

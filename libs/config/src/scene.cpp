@@ -122,11 +122,12 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
     if (!conns->is_sequence()) conns->fail("expected a list of connections");
     for (std::size_t i = 0; i < conns->size(); ++i) {
       ConfigNode c = conns->at(i);
-      c.allow_only({"from", "to", "order", "reconstruction"});
+      c.allow_only({"from", "to", "order", "reconstruction", "coupling"});
       ConnectionSpec spec;
       spec.from = c.string("from");
       spec.to = c.string("to");
       spec.key_path = c.path();
+      spec.coupling = c.optional_child("coupling");
       if (!scene.find_participant(spec.from)) c.child("from").fail("expected the name of a participant of this scene, got '" + spec.from + "'");
       if (!scene.find_participant(spec.to)) c.child("to").fail("expected the name of a participant of this scene, got '" + spec.to + "'");
       if (spec.from == spec.to) c.child("to").fail("expected another participant than 'from'");
@@ -151,19 +152,34 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   }
 
   if (auto rep = root.optional_child("report")) {
-    if (!rep->is_sequence()) rep->fail("expected a list of {min|max: signal, at: signal, unit: ...}");
+    if (!rep->is_sequence()) rep->fail("expected a list of figures such as {min: signal, at: signal, unit: deg}");
+    const std::vector<std::string> stats{"min", "max", "max_abs", "final", "time_true", "step_response"};
     for (std::size_t i = 0; i < rep->size(); ++i) {
       ConfigNode r = rep->at(i);
-      r.allow_only({"min", "max", "at", "unit"});
+      r.allow_only({"min", "max", "max_abs", "final", "time_true", "step_response", "at", "unit", "target", "band"});
       ReportSpec spec;
-      if (r.has("min") == r.has("max")) r.fail("expected exactly one of 'min' or 'max'");
-      spec.stat = r.has("min") ? "min" : "max";
+      int found = 0;
+      for (const auto& s : stats)
+        if (r.has(s)) {
+          spec.stat = s;
+          ++found;
+        }
+      if (found != 1) r.fail("expected exactly one of min, max, max_abs, final, time_true, step_response");
       spec.signal = parse_signal_ref(r.child(spec.stat), r.string(spec.stat));
       if (r.has("at")) spec.at = parse_signal_ref(r.child("at"), r.string("at"));
       if (r.has("unit")) {
         spec.at_unit = r.string("unit");
-        spec.at_scale = parse_quantity("1 " + spec.at_unit).value_si;
+        try {
+          spec.at_scale = parse_quantity("1 " + spec.at_unit).value_si;
+        } catch (const std::exception& e) {
+          r.child("unit").fail(std::string("expected a display unit: ") + e.what());
+        }
         spec.at_wrap_turn = spec.at_unit == "deg";
+      }
+      if (spec.stat == "step_response") {
+        if (r.has("target")) spec.target = r.child("target").as_string();
+        spec.band = r.has("band") ? r.number("band") : 0.02;
+        if (!(spec.band > 0 && spec.band < 0.5)) r.child("band").fail("expected a settling band in (0, 50 %)");
       }
       for (const SignalRef* ref : {&spec.signal, spec.at ? &*spec.at : nullptr})
         if (ref && !scene.find_participant(ref->participant))

@@ -1,6 +1,7 @@
 #include "mechsim/cosim/composer.h"
 
 #include <chrono>
+#include <cmath>
 #include <functional>
 #include <stdexcept>
 
@@ -13,8 +14,6 @@ CompositeBlock::CompositeBlock(ScenePlan& plan) : Block("composite"), plan_(plan
   output_base_.assign(1, 0);
   event_base_.assign(1, 0);
   for (auto& node : nodes) {
-    if (node.block->sample_time() > 0)
-      throw std::runtime_error("the composer does not handle sampled blocks yet (" + node.name() + ")");
     for (const auto& s : node.block->state_names()) declare_state(node.name() + "." + s, "");
     for (const auto& o : node.block->outputs()) declare_output(node.name() + "." + o.name, o.unit);
     state_base_.push_back(state_base_.back() + node.block->num_states());
@@ -35,6 +34,23 @@ CompositeBlock::CompositeBlock(ScenePlan& plan) : Block("composite"), plan_(plan
       for (const auto& [field, input] : edge.field_to_input)
         wires_[i].push_back({input, src, nodes[src].published_outputs[field]});
     }
+
+  for (const auto& node : nodes) {
+    const double ts = node.block->sample_time();
+    if (ts > 0 && (sample_time_ == 0 || ts < sample_time_)) sample_time_ = ts;
+  }
+  for (const auto& node : nodes) {
+    const double ts = node.block->sample_time();
+    long ratio = 0;
+    if (ts > 0) {
+      ratio = std::lround(ts / sample_time_);
+      if (std::abs(ratio * sample_time_ - ts) > 1e-9 * ts)
+        throw std::runtime_error("sample time of " + node.name() + " (" + std::to_string(ts) +
+                                 " s) is not a whole multiple of the shortest one in the scene (" +
+                                 std::to_string(sample_time_) + " s)");
+    }
+    sample_ratio_.push_back(ratio);
+  }
 
   // Sweeps needed: the longest chain of outputs linked by feedthrough (the plan refused
   // cycles), counted in blocks visited; each sweep evaluates every block once in order.
@@ -86,6 +102,19 @@ void CompositeBlock::calc_outputs(double t, std::span<const double> x, std::span
                                   std::span<double> y) const {
   evaluate(t, x);
   for (std::size_t i = 0; i < y_.size(); ++i) std::copy(y_[i].begin(), y_[i].end(), y.begin() + output_base_[i]);
+}
+
+void CompositeBlock::discrete_update(double t, std::span<double> x, std::span<const double>) {
+  // The integrator calls this at t0 + j * sample_time_, j = 0, 1, ...: block i updates
+  // when j is a multiple of its ratio, with the inputs its partners give at that instant.
+  auto& nodes = plan_.nodes();
+  evaluate(t, x);
+  for (std::size_t i = 0; i < nodes.size(); ++i)
+    if (sample_ratio_[i] > 0 && samples_taken_ % sample_ratio_[i] == 0) {
+      nodes[i].block->discrete_update(t, x.subspan(state_base_[i], state_base_[i + 1] - state_base_[i]), u_[i]);
+      evaluate(t, x);  // held outputs changed: later blocks see the new values
+    }
+  ++samples_taken_;
 }
 
 models::Crossing CompositeBlock::event_direction(int index) const {

@@ -6,6 +6,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "mechsim/cosim/divergence_guard.h"
 #include "mechsim/cosim/node_stepper.h"
 #include "mechsim/cosim/output_log.h"
 
@@ -152,7 +153,13 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
           return true;
       return false;
     };
+    std::vector<std::string> output_names;
+    for (const auto& o : node.block->outputs()) output_names.push_back(o.name);
+    DivergenceGuard guard(output_names);
     auto publish = [&] {
+      if (auto why = guard.check(stepper.outputs()))
+        throw std::runtime_error("diverged at step " + std::to_string(stepper.step()) + " (t = " +
+                                 std::to_string(stepper.time()) + " s): " + *why);
       header.step = stepper.step();
       header.t = stepper.time();
       writer->write(header, values);

@@ -53,7 +53,14 @@ ScenePlan ScenePlan::build(const config::Scene& scene) {
       for (const auto& t : node_types()) known += (known.empty() ? "" : ", ") + t.name;
       refuse(scene, spec.key_path + ".type", "expected a node type (" + known + "), got '" + spec.type + "'");
     }
-    node.block = node.type->make_block(spec.params);
+    // The element at the cut of any connection to or from this participant.
+    const config::ConfigNode* coupling = nullptr;
+    for (const auto& c : scene.connections)
+      if ((c.from == spec.name || c.to == spec.name) && c.coupling) {
+        if (coupling) refuse(scene, c.key_path + ".coupling", "expected at most one coupling element per participant");
+        coupling = &*c.coupling;
+      }
+    node.block = node.type->make_block(spec.params, coupling);
     node.topic = spec.name + "/" + node.type->topic_suffix;
     for (const auto& field : node.type->publishes->fields) {
       int out = node.block->output_index(field.name);
@@ -78,12 +85,15 @@ ScenePlan ScenePlan::build(const config::Scene& scene) {
     edge.reconstruction = c.reconstruction;
     for (const auto& [field, input] : group->field_to_input) {
       int f = edge.type->field_index(field), i = to.block->input_index(input);
-      if (f < 0 || i < 0) throw std::logic_error("catalog maps unknown field/input " + field + " -> " + input);
+      if (f < 0) throw std::logic_error("catalog maps unknown field " + field);
+      if (i < 0) continue;  // an input this configuration of the block does not use
       for (const auto& other : to.inputs)
         for (const auto& [of, oi] : other.field_to_input)
           if (oi == i) refuse(scene, c.key_path, "expected each input of '" + c.to + "' fed once: input '" + input + "' is already fed by '" + other.from + "'");
       edge.field_to_input.emplace_back(f, i);
     }
+    if (edge.field_to_input.empty())
+      refuse(scene, c.key_path, "expected a connection that feeds an input of '" + c.to + "': as configured, it reads nothing from '" + c.from + "'");
     to.inputs.push_back(std::move(edge));
     ++from.subscriber_count;
   }

@@ -14,17 +14,31 @@ FieldInfo flag(const char* name) { return {name, FieldKind::boolean}; }
 
 // Mirrors idl/cam.idl.
 const TopicType kCamState{"mechsim::msg::CamState", "cam.idl",
-                          {f64("angle"), f64("speed"), f64("lift"), f64("lift_d1"), f64("lift_d2"),
-                           f64("pressure_angle"), f64("shaft_torque"), f64("drive_power")}};
+                          {f64("angle"), f64("speed"), f64("acceleration"), f64("lift"), f64("lift_d1"),
+                           f64("lift_d2"), f64("pressure_angle"), f64("shaft_torque"), f64("drive_power")}};
 // Mirrors idl/follower.idl.
 const TopicType kFollowerState{"mechsim::msg::FollowerState", "follower.idl",
                                {f64("position"), f64("velocity"), f64("acceleration"),
-                                f64("contact_force"), flag("contact"), f64("drive_torque"),
+                                f64("contact_force"), flag("contact"), f64("lift_off_count"),
+                                f64("drive_torque"), f64("drive_torque_rest"), f64("reflected_inertia"),
                                 f64("spring_force"), f64("load_force"), f64("inertia_force")}};
+// Mirrors idl/servo.idl.
+const TopicType kServoCommand{"mechsim::msg::ServoCommand", "servo.idl",
+                              {f64("armature_voltage"), f64("position_reference"), f64("following_error"),
+                               f64("velocity_error"), flag("saturated")}};
+// Mirrors idl/tacho.idl.
+const TopicType kTachoState{"mechsim::msg::TachoState", "tacho.idl",
+                            {f64("tacho_voltage"), f64("motor_angle"), f64("motor_speed"), f64("armature_current"),
+                             f64("coupling_torque")}};
+// Mirrors idl/slide.idl.
+const TopicType kSlideState{"mechsim::msg::SlideState", "slide.idl",
+                            {f64("spindle_angle"), f64("spindle_speed"), f64("slide_position"), f64("slide_speed"),
+                             f64("coupling_torque")}};
 }  // namespace
 
 const std::vector<const TopicType*>& all_topic_types() {
-  static const std::vector<const TopicType*> types{&kCamState, &kFollowerState};
+  static const std::vector<const TopicType*> types{&kCamState, &kFollowerState, &kServoCommand, &kTachoState,
+                                                          &kSlideState};
   return types;
 }
 

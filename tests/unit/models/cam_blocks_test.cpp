@@ -35,12 +35,14 @@ TEST(CamShaftBlock, DeclaresItsPorts) {
   const cam::CamShaftBlock b = make_cam_shaft();
   // Constant speed: the angle is a function of time, not a state.
   EXPECT_EQ(b.num_states(), 0);
-  EXPECT_EQ(input_names(b), std::vector<std::string>{"load_torque"});
-  EXPECT_FALSE(b.inputs()[0].required);
-  EXPECT_EQ(b.inputs()[0].default_value, 0.0);
+  EXPECT_EQ(input_names(b), (std::vector<std::string>{"load_torque", "reflected_inertia"}));
+  for (const auto& in : b.inputs()) {
+    EXPECT_FALSE(in.required) << in.name;
+    EXPECT_EQ(in.default_value, 0.0) << in.name;
+  }
   EXPECT_EQ(output_names(b),
             (std::vector<std::string>{"angle", "speed", "lift", "lift_d1", "lift_d2",
-                                      "pressure_angle", "shaft_torque", "drive_power"}));
+                                      "pressure_angle", "shaft_torque", "drive_power", "acceleration"}));
   for (const auto& o : b.outputs()) {
     const bool through = o.name == "shaft_torque" || o.name == "drive_power";
     EXPECT_EQ(o.feedthrough, through ? std::vector<int>{0} : std::vector<int>{}) << o.name;
@@ -54,7 +56,7 @@ TEST(CamShaftBlock, OutputsMatchTheFreeFunctions) {
   std::vector<double> y(b.num_outputs());
   for (double t : {0.0, 0.2, 0.7, 0.9, 2.8}) {  // 2.8 s: past one turn (the angle is unwrapped)
     const double theta = 0.3 + pi * t;
-    b.calc_outputs(t, {}, std::vector<double>{1.5}, y);
+    b.calc_outputs(t, {}, std::vector<double>{1.5, 0.04}, y);
     const cam::LawPoint p = law.evaluate(theta);
     // Same functions on the same numbers: identical results.
     EXPECT_EQ(y[b.output_index("angle")], theta);
@@ -65,6 +67,8 @@ TEST(CamShaftBlock, OutputsMatchTheFreeFunctions) {
     EXPECT_EQ(y[b.output_index("pressure_angle")], cam::pressure_angle(p.s, p.s_d1, 0.065, -0.0035));
     EXPECT_EQ(y[b.output_index("shaft_torque")], 1.5);
     EXPECT_EQ(y[b.output_index("drive_power")], 1.5 * pi);
+    // Constant speed: no acceleration, so the reflected inertia takes no torque.
+    EXPECT_EQ(y[b.output_index("acceleration")], 0.0);
   }
 }
 
@@ -86,9 +90,16 @@ TEST(FollowerBlock, DeclaresItsPorts) {
   EXPECT_EQ(output_names(b),
             (std::vector<std::string>{"position", "velocity", "acceleration", "contact_force",
                                       "contact", "drive_torque", "spring_force", "load_force",
-                                      "inertia_force"}));
-  // Every output depends directly on some input (the block has no state).
-  for (const auto& o : b.outputs()) EXPECT_FALSE(o.feedthrough.empty()) << o.name;
+                                      "inertia_force", "drive_torque_rest", "reflected_inertia",
+                                      "lift_off_count"}));
+  // Every output but the (constant) lift-off count depends directly on some input (the
+  // block has no state).
+  for (const auto& o : b.outputs())
+    EXPECT_EQ(o.feedthrough.empty(), o.name == "lift_off_count") << o.name;
+  // What a dynamic cam shaft reads must not depend on its acceleration (input 6): that
+  // would close an algebraic loop across the cut.
+  for (const char* name : {"drive_torque_rest", "reflected_inertia"})
+    for (int i : b.outputs()[b.output_index(name)].feedthrough) EXPECT_NE(i, 6) << name;
   // The cam outputs connect to the follower inputs by name.
   const cam::CamShaftBlock shaft = make_cam_shaft();
   for (int i = 0; i < 6; ++i) EXPECT_GE(shaft.output_index(b.inputs()[i].name), 0);
@@ -113,6 +124,11 @@ TEST(FollowerBlock, OutputsMatchTheFreeFunctions) {
     EXPECT_EQ(y[b.output_index("spring_force")], f.spring_force_n);
     EXPECT_EQ(y[b.output_index("load_force")], f.functional_load_n);
     EXPECT_EQ(y[b.output_index("inertia_force")], f.inertia_force_n);
+    EXPECT_EQ(y[b.output_index("drive_torque_rest")], f.drive_torque_rest_nm);
+    EXPECT_EQ(y[b.output_index("reflected_inertia")], follower::reflected_inertia(c.follower.mass, p.s_d1));
+    // The split is exact: full torque = rest + m S'² ω̇ (up to rounding of ~1e-15 N m).
+    EXPECT_NEAR(y[b.output_index("drive_torque")],
+                y[b.output_index("drive_torque_rest")] + y[b.output_index("reflected_inertia")] * wd, 1e-12);
   }
   // Functional loads at the wrapped angle: 190° + 360° lies in the tensile 180–210° load.
   const double th = cam::deg_to_rad(190.0) + 2 * pi;

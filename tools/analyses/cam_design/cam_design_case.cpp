@@ -62,6 +62,29 @@ std::string format_deg(double rad) {
   return buf;
 }
 
+// The cam_shaft parameters. A C1 whose span does not match its C2 is refused by the law
+// for its velocity jump; when the scene asks for the match, the refusal says which span
+// would have been right.
+cam::CamShaftParams parse_shaft(const ConfigNode& cam_params, const std::optional<ConfigNode>& flag_node) {
+  try {
+    return cosim::parse_cam_shaft_params(cam_params);
+  } catch (const config::ConfigError& e) {
+    if (!flag_node) throw;
+    std::optional<C1Match> m;
+    try {
+      m = match_first_c1(raw_segments(cam_params.child("law")), *flag_node);
+    } catch (const config::ConfigError&) {
+      throw e;
+    }
+    if (m->scene_span_matches) throw;
+    throw config::ConfigError(e.file(), e.key_path(),
+                              e.expected() + " (design.match_c1_to_c2: the C1 at law[" +
+                                  std::to_string(m->c1_law_index) + "] needs a span of " +
+                                  format_deg(m->matched_span_rad) + ", not " + format_deg(m->scene_span_rad) + ")",
+                              e.line());
+  }
+}
+
 }  // namespace
 
 RollerCase roller_case_from_scene(const config::Scene& scene, const DesignSettings& settings) {
@@ -91,26 +114,7 @@ RollerCase roller_case_from_scene(const config::Scene& scene, const DesignSettin
   std::optional<ConfigNode> flag_node;
   if (settings.match_c1_to_c2) flag_node = scene.design->child("match_c1_to_c2");
 
-  cam::CamShaftParams shaft;
-  try {
-    shaft = cosim::parse_cam_shaft_params(cam_params);
-  } catch (const config::ConfigError& e) {
-    // A C1 whose span does not match its C2 is refused for its velocity jump; when the
-    // scene asks for the match, say which span would have been right.
-    if (!flag_node) throw;
-    std::optional<C1Match> m;
-    try {
-      m = match_first_c1(raw_segments(cam_params.child("law")), *flag_node);
-    } catch (const config::ConfigError&) {
-      throw e;
-    }
-    if (m->scene_span_matches) throw;
-    throw config::ConfigError(e.file(), e.key_path(),
-                              e.expected() + " (design.match_c1_to_c2: the C1 at law[" +
-                                  std::to_string(m->c1_law_index) + "] needs a span of " +
-                                  format_deg(m->matched_span_rad) + ", not " + format_deg(m->scene_span_rad) + ")",
-                              e.line());
-  }
+  const cam::CamShaftParams shaft = parse_shaft(cam_params, flag_node);
   const cosim::FollowerConfig follower = cosim::parse_follower_params(follower_spec->params);
 
   const std::vector<RawSegment> raw = raw_segments(cam_params.child("law"));

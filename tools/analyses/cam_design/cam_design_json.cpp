@@ -20,7 +20,6 @@ constexpr double rpm = 2.0 * pi / 60.0;
 // A finite number, or null (JSON has no infinity).
 json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 json mm(double m) { return number(m * 1e3); }
-json deg(double rad) { return number(rad / degree); }
 // An angle of the cycle in [0, 360) deg.
 json cycle_deg(double rad) {
   if (!std::isfinite(rad)) return nullptr;

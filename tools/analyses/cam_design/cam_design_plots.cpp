@@ -209,12 +209,30 @@ std::vector<NamedFigure> flat_face_figures(const std::string& scene, const FlatF
   return out;
 }
 
+// gnuplot 5.4 misreads two escaped quotes in a row (the label S'' becomes 'S''''' in the
+// script): write a double prime as " in every text of a figure.
+void write_double_primes_as_quotes(std::string& text) {
+  for (std::size_t at = text.find("''"); at != std::string::npos; at = text.find("''", at + 1))
+    text.replace(at, 2, "\"");
+}
+
+void write_double_primes_as_quotes(Figure& f) {
+  write_double_primes_as_quotes(f.title);
+  for (auto& panel : f.panels) {
+    for (auto* text : {&panel.title, &panel.xlabel, &panel.ylabel}) write_double_primes_as_quotes(*text);
+    for (auto& series : panel.series) write_double_primes_as_quotes(series.label);
+    for (auto& line : panel.hlines) write_double_primes_as_quotes(line.second);
+  }
+}
+
 }  // namespace
 
 std::vector<NamedFigure> design_figures(const CamDesignResult& result) {
-  if (result.roller) return roller_figures(result.scene_name, *result.roller);
-  if (result.flat_face) return flat_face_figures(result.scene_name, *result.flat_face);
-  return {};
+  std::vector<NamedFigure> out;
+  if (result.roller) out = roller_figures(result.scene_name, *result.roller);
+  if (result.flat_face) out = flat_face_figures(result.scene_name, *result.flat_face);
+  for (auto& f : out) write_double_primes_as_quotes(f.figure);
+  return out;
 }
 
 PlotOutcome write_plots(const std::string& dir, const CamDesignResult& result) {

@@ -1,6 +1,9 @@
-// Node type `cam_shaft`: the cam shaft with its motion law and pitch-curve geometry,
-// publishing <name>/state (CamState). Reads the follower's drive torque.
+// Node type `cam_shaft`: the cam shaft with its motion law, pitch-curve geometry and drive,
+// publishing <name>/state (CamState). Reads the follower's drive torque and reflected inertia.
+#include <cmath>
 #include <numbers>
+#include <optional>
+#include <string>
 
 #include "mechsim/cosim/catalog.h"
 #include "mechsim/cosim/node_params.h"
@@ -44,19 +47,78 @@ cam::MotionLaw parse_motion_law(const ConfigNode& law) {
   }
 }
 
+namespace {
+
+// `drive:` (default constant speed) and, for a torque drive, the shaft inertia.
+void parse_drive(const ConfigNode& p, cam::CamShaftParams& params) {
+  const std::optional<ConfigNode> drive = p.optional_child("drive");
+  if (drive && !drive->is_map()) drive->fail("expected a map {type: constant_speed | constant_torque | motor_line, ...}");
+  const std::string type =
+      drive ? drive->choice("type", {"constant_speed", "constant_torque", "motor_line"}) : "constant_speed";
+  if (type == "constant_speed") {
+    if (drive) drive->allow_only({"type", "speed"});
+    const bool inner = drive && drive->has("speed");
+    if (inner && p.has("speed")) drive->child("speed").fail("expected the speed once: here or at params.speed, not both");
+    params.speed = inner ? drive->positive_quantity("speed", dim::angular_velocity)
+                         : p.positive_quantity("speed", dim::angular_velocity);
+    for (const char* key : {"inertia", "flywheel", "initial_speed"})
+      if (p.has(key))
+        p.child(key).fail(std::string("expected no ") + key +
+                          " with a constant-speed drive (an ideal speed source ignores inertia): "
+                          "set drive.type to constant_torque or motor_line");
+    return;
+  }
+  if (type == "constant_torque") {
+    drive->allow_only({"type", "torque"});
+    params.drive.type = cam::DriveType::constant_torque;
+    params.drive.torque_nm = drive->quantity("torque", dim::torque);
+  } else {
+    drive->allow_only({"type", "stall_torque", "no_load_speed"});
+    params.drive.type = cam::DriveType::motor_line;
+    params.drive.stall_torque_nm = drive->positive_quantity("stall_torque", dim::torque);
+    params.drive.no_load_speed_rad_s = drive->positive_quantity("no_load_speed", dim::angular_velocity);
+  }
+  // Nominal speed: the design speed of the analyses and the default initial speed.
+  params.speed = p.positive_quantity("speed", dim::angular_velocity);
+  params.initial_speed = p.quantity_or("initial_speed", dim::angular_velocity, params.speed);
+  double inertia = p.non_negative_quantity_or("inertia", dim::inertia, 0.0);
+  if (auto flywheel = p.optional_child("flywheel")) {
+    if (!flywheel->is_map()) flywheel->fail("expected a map {inertia} or {radius, thickness, density}");
+    flywheel->allow_only({"inertia", "radius", "thickness", "density"});
+    if (flywheel->has("inertia")) {
+      for (const char* key : {"radius", "thickness", "density"})
+        if (flywheel->has(key)) flywheel->child(key).fail("expected either inertia or a disc {radius, thickness, density}, not both");
+      inertia += flywheel->positive_quantity("inertia", dim::inertia);
+    } else {
+      // A solid steel disc unless told otherwise (the report's flywheel).
+      inertia += cam::disc_inertia(flywheel->positive_quantity("radius", dim::length),
+                                   flywheel->positive_quantity("thickness", dim::length),
+                                   flywheel->positive_quantity_or("density", dim::density, 7800.0));
+    }
+  }
+  if (!(inertia > 0.0))
+    p.fail("expected a shaft inertia > 0 for a torque drive: give inertia (shaft, kg m^2) and/or a flywheel");
+  params.inertia_kgm2 = inertia;
+}
+
+}  // namespace
+
 cam::CamShaftParams parse_cam_shaft_params(const ConfigNode& p) {
-  p.allow_only({"speed", "pitch_radius", "eccentricity", "initial_angle", "law"});
+  p.allow_only({"speed", "drive", "inertia", "flywheel", "initial_speed", "pitch_radius", "eccentricity",
+                "initial_angle", "law"});
+  // speed (0 here) and the drive come from parse_drive.
   cam::CamShaftParams params{parse_motion_law(p.child("law")), p.positive_quantity("pitch_radius", dim::length),
-                             p.quantity_or("eccentricity", dim::length, 0.0), p.positive_quantity("speed", dim::angular_velocity),
+                             p.quantity_or("eccentricity", dim::length, 0.0), 0.0,
                              p.quantity_or("initial_angle", dim::angle, 0.0)};
   if (std::abs(params.eccentricity) >= params.pitch_radius)
     p.child("eccentricity").fail("expected |eccentricity| below the pitch radius");
+  parse_drive(p, params);
   return params;
 }
 
 namespace {
 
-std::unique_ptr<models::Block> make_cam_shaft(const ConfigNode& p) {
+std::unique_ptr<models::Block> make_cam_shaft(const ConfigNode& p, const ConfigNode*) {
   return std::make_unique<cam::CamShaftBlock>(parse_cam_shaft_params(p));
 }
 
@@ -64,11 +126,16 @@ std::unique_ptr<models::Block> make_cam_shaft(const ConfigNode& p) {
 
 NodeType cam_shaft_node_type() {
   return {"cam_shaft",
-          "cam shaft: constant-speed drive, motion law, pressure angle; publishes CamState",
+          "cam shaft: motion law and pressure angle, driven at constant speed or by a torque (constant, motor "
+          "line) on its inertia and flywheel; publishes CamState",
           transport::find_topic_type("CamState"),
           "state",
           make_cam_shaft,
-          {{transport::find_topic_type("FollowerState"), {{"drive_torque", "load_torque"}}}}};
+          // The follower's torque without its reflected-inertia part, and that inertia: a
+          // dynamic shaft carries m S'^2 itself (no algebraic loop); at constant speed
+          // drive_torque_rest equals drive_torque.
+          {{transport::find_topic_type("FollowerState"),
+            {{"drive_torque_rest", "load_torque"}, {"reflected_inertia", "reflected_inertia"}}}}};
 }
 
 }  // namespace mechsim::cosim

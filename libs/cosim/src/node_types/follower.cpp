@@ -1,7 +1,13 @@
-// Node type `follower`: the translating roller follower (rigid, kinetostatic), publishing
-// <name>/state (FollowerState). Reads the cam shaft's CamState.
+// Node type `follower`: the translating roller follower, publishing <name>/state
+// (FollowerState). Reads the cam shaft's CamState. `model: rigid` is the kinetostatic
+// follower of spec cam.md §3; `model: flexible` the mass behind a follower stiffness with
+// a unilateral contact (§5 model (b)), with lift-off and landing events.
+#include <optional>
+#include <string>
+
 #include "mechsim/cosim/catalog.h"
 #include "mechsim/cosim/node_params.h"
+#include "mechsim/models/follower/flexible_follower_block.h"
 #include "mechsim/models/follower/follower_block.h"
 
 namespace mechsim::cosim {
@@ -10,10 +16,42 @@ namespace fol = models::follower;
 using config::ConfigNode;
 namespace dim = config::dim;
 
+namespace {
+
+// `flexible:` {stiffness, damping_ratio + damper | contact_damping / frame_damping,
+// initial_lift}.
+void parse_flexible(const ConfigNode& f, FollowerConfig& config) {
+  if (!f.is_map()) f.fail("expected a map {stiffness, damping_ratio, damper, ...}");
+  f.allow_only({"stiffness", "damping_ratio", "damper", "contact_damping", "frame_damping", "initial_lift"});
+  fol::FollowerContact& c = config.contact;
+  c.stiffness_n_per_m = f.positive_quantity("stiffness", dim::stiffness);
+  if (f.has("damping_ratio")) {
+    for (const char* key : {"contact_damping", "frame_damping"})
+      if (f.has(key))
+        f.child(key).fail("expected either damping_ratio (with damper) or contact_damping/frame_damping, not both");
+    const double ratio = f.number("damping_ratio");
+    if (!(ratio >= 0.0)) f.child("damping_ratio").fail("expected a damping ratio >= 0, e.g. 0.08");
+    const double damping = fol::damping_for_ratio(ratio, c.stiffness_n_per_m, config.params.mass);
+    // Where the ζ damper sits: in the contact (on Ṡ − ẏ, only the vibration dissipates) or
+    // from the mass to the frame (on ẏ, the report's model (a) as printed).
+    if (f.choice_or("damper", {"contact", "frame"}, "contact") == "contact")
+      c.contact_damping_n_s_per_m = damping;
+    else
+      c.frame_damping_n_s_per_m = damping;
+  } else {
+    if (f.has("damper")) f.child("damper").fail("expected damper only together with damping_ratio");
+    c.contact_damping_n_s_per_m = f.non_negative_quantity_or("contact_damping", dim::viscous_damping, 0.0);
+    c.frame_damping_n_s_per_m = f.non_negative_quantity_or("frame_damping", dim::viscous_damping, 0.0);
+  }
+  config.initial_lift = f.quantity_or("initial_lift", dim::length, 0.0);
+}
+
+}  // namespace
+
 FollowerConfig parse_follower_params(const ConfigNode& p) {
-  p.allow_only({"model", "mass", "spring", "loads", "roller_radius"});
+  p.allow_only({"model", "mass", "spring", "loads", "roller_radius", "flexible"});
   FollowerConfig config;
-  config.model = p.choice_or("model", {"rigid"}, "rigid");
+  config.model = p.choice_or("model", {"rigid", "flexible"}, "rigid");
   config.roller_radius = p.non_negative_quantity_or("roller_radius", dim::length, 0.0);
   fol::FollowerParams& params = config.params;
   params.mass = p.positive_quantity("mass", dim::mass);
@@ -32,26 +70,35 @@ FollowerConfig parse_follower_params(const ConfigNode& p) {
       params.loads.push_back(load);
     }
   }
+  const std::optional<ConfigNode> flexible = p.optional_child("flexible");
+  if (config.model == "flexible") {
+    parse_flexible(flexible ? *flexible : p.child("flexible"), config);  // child(): "missing key"
+  } else if (flexible) {
+    flexible->fail("expected no flexible: section with model: rigid (set model: flexible)");
+  }
   return config;
 }
 
 namespace {
 
-std::unique_ptr<models::Block> make_follower(const ConfigNode& p) {
-  return std::make_unique<fol::FollowerBlock>(parse_follower_params(p).params);
+std::unique_ptr<models::Block> make_follower(const ConfigNode& p, const ConfigNode*) {
+  const FollowerConfig config = parse_follower_params(p);
+  if (config.model == "flexible") return std::make_unique<fol::FlexibleFollowerBlock>(config.flexible());
+  return std::make_unique<fol::FollowerBlock>(config.params);
 }
 
 }  // namespace
 
 NodeType follower_node_type() {
   return {"follower",
-          "cam follower: rigid translating roller follower, kinetostatic contact force; publishes FollowerState",
+          "cam follower: rigid (kinetostatic) or flexible (follower stiffness, unilateral contact with lift-off "
+          "and landing events) translating roller follower; publishes FollowerState",
           transport::find_topic_type("FollowerState"),
           "state",
           make_follower,
           {{transport::find_topic_type("CamState"),
-            {{"angle", "angle"}, {"speed", "speed"}, {"lift", "lift"}, {"lift_d1", "lift_d1"},
-             {"lift_d2", "lift_d2"}, {"pressure_angle", "pressure_angle"}}}}};
+            {{"angle", "angle"}, {"speed", "speed"}, {"acceleration", "acceleration"}, {"lift", "lift"},
+             {"lift_d1", "lift_d1"}, {"lift_d2", "lift_d2"}, {"pressure_angle", "pressure_angle"}}}}};
 }
 
 }  // namespace mechsim::cosim

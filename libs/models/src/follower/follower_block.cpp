@@ -5,7 +5,8 @@ namespace mechsim::models::follower {
 namespace {
 enum Input { in_angle, in_speed, in_lift, in_lift_d1, in_lift_d2, in_pressure_angle, in_acceleration };
 enum Output { out_position, out_velocity, out_acceleration, out_contact_force, out_contact,
-              out_drive_torque, out_spring_force, out_load_force, out_inertia_force };
+              out_drive_torque, out_spring_force, out_load_force, out_inertia_force,
+              out_drive_torque_rest, out_reflected_inertia, out_lift_off_count };
 }  // namespace
 
 FollowerBlock::FollowerBlock(FollowerParams params) : Block("follower"), params_(std::move(params)) {
@@ -27,6 +28,9 @@ FollowerBlock::FollowerBlock(FollowerParams params) : Block("follower"), params_
   declare_output("spring_force", "N", {lift});
   declare_output("load_force", "N", {angle});
   declare_output("inertia_force", "N", {speed, lift_d1, lift_d2, accel});
+  declare_output("drive_torque_rest", "N*m", {angle, speed, lift, lift_d1, lift_d2});
+  declare_output("reflected_inertia", "kg*m^2", {lift_d1});
+  declare_output("lift_off_count", "1");
 }
 
 void FollowerBlock::calc_outputs(double, std::span<const double>, std::span<const double> u,
@@ -44,6 +48,9 @@ void FollowerBlock::calc_outputs(double, std::span<const double>, std::span<cons
   y[out_spring_force] = f.spring_force_n;
   y[out_load_force] = f.functional_load_n;
   y[out_inertia_force] = f.inertia_force_n;
+  y[out_drive_torque_rest] = f.drive_torque_rest_nm;
+  y[out_reflected_inertia] = reflected_inertia(params_.mass, u[in_lift_d1]);
+  y[out_lift_off_count] = 0.0;
 }
 
 }  // namespace mechsim::models::follower

@@ -54,6 +54,10 @@ FollowerForces kinetostatic_forces(const FollowerParams& params, double theta_ra
   f.normal_component_n = f.functional_load_n + f.spring_force_n + f.inertia_force_n;
   f.contact_force_n = f.normal_component_n / std::cos(pressure_angle_rad);
   f.drive_torque_nm = f.normal_component_n * lift_d1;
+  // The same operations as above without the S' ω̇ term: at ω̇ = 0 both are bit-identical
+  // (adding an exact zero changes no double).
+  const double inertia_rest = params.mass * (lift_d2 * speed_rad_s * speed_rad_s);
+  f.drive_torque_rest_nm = (f.functional_load_n + f.spring_force_n + inertia_rest) * lift_d1;
   return f;
 }
 

@@ -32,6 +32,8 @@ ServoAmplifierBlock::ServoAmplifierBlock(ServoAmplifierParams params)
   }
   out_.armature_voltage = declare_output("armature_voltage", "V", voltage_ft);
   out_.position_reference = declare_output("position_reference", "m", reference_ft);
+  // Setpoint minus the measured position (the indirect measurement through the spindle).
+  out_.following_error = declare_output("following_error", "m", error_ft);
   out_.velocity_error = declare_output("velocity_error", "V", error_ft);
   out_.saturated = declare_output("saturated", "1", voltage_ft);
 
@@ -91,6 +93,7 @@ void ServoAmplifierBlock::calc_outputs(double t, std::span<const double> x, std:
   if (sampled()) {
     y[out_.armature_voltage] = held_.voltage;
     y[out_.position_reference] = held_.sample.reference;
+    y[out_.following_error] = held_.sample.reference - held_.sample.spindle_angle * params_.lead / (2 * std::numbers::pi);
     y[out_.velocity_error] = held_.velocity_error;
     y[out_.saturated] = held_.saturated;
     return;
@@ -99,6 +102,7 @@ void ServoAmplifierBlock::calc_outputs(double t, std::span<const double> x, std:
   const Law law = evaluate(m, x[st_.integrator], x[st_.filtered_tacho_voltage]);
   y[out_.armature_voltage] = law.voltage;
   y[out_.position_reference] = m.reference;
+  y[out_.following_error] = m.reference - m.spindle_angle * params_.lead / (2 * std::numbers::pi);
   y[out_.velocity_error] = law.velocity_error;
   y[out_.saturated] = law.saturated ? 1.0 : 0.0;
 }

@@ -4,6 +4,9 @@
 
 #include "cam.h"
 #include "follower.h"
+#include "servo.h"
+#include "slide.h"
+#include "tacho.h"
 
 namespace mechsim::transport::cyclone {
 
@@ -15,7 +18,8 @@ std::vector<CycloneType> make_bindings() {
   std::vector<CycloneType> b;
   b.push_back({find_topic_type("CamState"), &mechsim_msg_CamState_desc, sizeof(mechsim_msg_CamState),
                {MECHSIM_F64(mechsim_msg_CamState, angle), MECHSIM_F64(mechsim_msg_CamState, speed),
-                MECHSIM_F64(mechsim_msg_CamState, lift), MECHSIM_F64(mechsim_msg_CamState, lift_d1),
+                MECHSIM_F64(mechsim_msg_CamState, acceleration), MECHSIM_F64(mechsim_msg_CamState, lift),
+                MECHSIM_F64(mechsim_msg_CamState, lift_d1),
                 MECHSIM_F64(mechsim_msg_CamState, lift_d2),
                 MECHSIM_F64(mechsim_msg_CamState, pressure_angle),
                 MECHSIM_F64(mechsim_msg_CamState, shaft_torque),
@@ -27,10 +31,27 @@ std::vector<CycloneType> make_bindings() {
                 MECHSIM_F64(mechsim_msg_FollowerState, acceleration),
                 MECHSIM_F64(mechsim_msg_FollowerState, contact_force),
                 MECHSIM_FLAG(mechsim_msg_FollowerState, contact),
+                MECHSIM_F64(mechsim_msg_FollowerState, lift_off_count),
                 MECHSIM_F64(mechsim_msg_FollowerState, drive_torque),
+                MECHSIM_F64(mechsim_msg_FollowerState, drive_torque_rest),
+                MECHSIM_F64(mechsim_msg_FollowerState, reflected_inertia),
                 MECHSIM_F64(mechsim_msg_FollowerState, spring_force),
                 MECHSIM_F64(mechsim_msg_FollowerState, load_force),
                 MECHSIM_F64(mechsim_msg_FollowerState, inertia_force)}});
+  b.push_back({find_topic_type("ServoCommand"), &mechsim_msg_ServoCommand_desc, sizeof(mechsim_msg_ServoCommand),
+               {MECHSIM_F64(mechsim_msg_ServoCommand, armature_voltage),
+                MECHSIM_F64(mechsim_msg_ServoCommand, position_reference),
+                MECHSIM_F64(mechsim_msg_ServoCommand, following_error),
+                MECHSIM_F64(mechsim_msg_ServoCommand, velocity_error),
+                MECHSIM_FLAG(mechsim_msg_ServoCommand, saturated)}});
+  b.push_back({find_topic_type("TachoState"), &mechsim_msg_TachoState_desc, sizeof(mechsim_msg_TachoState),
+               {MECHSIM_F64(mechsim_msg_TachoState, tacho_voltage), MECHSIM_F64(mechsim_msg_TachoState, motor_angle),
+                MECHSIM_F64(mechsim_msg_TachoState, motor_speed), MECHSIM_F64(mechsim_msg_TachoState, armature_current),
+                MECHSIM_F64(mechsim_msg_TachoState, coupling_torque)}});
+  b.push_back({find_topic_type("SlideState"), &mechsim_msg_SlideState_desc, sizeof(mechsim_msg_SlideState),
+               {MECHSIM_F64(mechsim_msg_SlideState, spindle_angle), MECHSIM_F64(mechsim_msg_SlideState, spindle_speed),
+                MECHSIM_F64(mechsim_msg_SlideState, slide_position), MECHSIM_F64(mechsim_msg_SlideState, slide_speed),
+                MECHSIM_F64(mechsim_msg_SlideState, coupling_torque)}});
   for (const auto& binding : b)
     if (binding.type == nullptr || binding.slots.size() != binding.type->fields.size())
       throw std::logic_error("cyclone binding does not match topic_types.cpp");

@@ -42,6 +42,9 @@ struct ConnectionSpec {
   std::string to;    // subscribing participant
   EdgeOrder order = EdgeOrder::jacobi;
   Reconstruction reconstruction = Reconstruction::hold;
+  // The element at the cut (e.g. the motor-spindle spring-damper), when the connection
+  // crosses one: both participants' node types read it (docs/scenes.md).
+  std::optional<ConfigNode> coupling;
   std::string key_path;  // "connections[1]"
 };
 
@@ -53,15 +56,20 @@ struct SignalRef {
   std::string full_name() const { return participant + "." + output; }
 };
 
-// An extremum the run summary states, e.g. the minimum contact force and the cam angle
-// where it occurs.
+// A figure the run summary states for the co-simulation and the reference, e.g. the
+// minimum contact force and the cam angle where it occurs, or the rise time of a step.
 struct ReportSpec {
-  std::string stat;  // "min" | "max"
+  // min | max | max_abs (with the time and optionally `at`), final (the last value),
+  // time_true (seconds the signal is > 0.5: a flag), step_response (rise 10-90 %,
+  // overshoot, settling into +-band of the target).
+  std::string stat;
   SignalRef signal;
   std::optional<SignalRef> at;  // another signal evaluated at the extremum
   std::string at_unit;          // display unit of `at` (e.g. "deg"), "" = SI
   double at_scale = 1.0;        // SI value / at_scale = displayed value
   bool at_wrap_turn = false;    // wrap an angle into [0, 360) deg
+  std::string target;           // step_response: the final value as written ("0.1 mm"); "" = the reference's last value
+  double band = 0.02;           // step_response: settling band, fraction of the step
 };
 
 struct Scene {

@@ -15,7 +15,8 @@
 
 namespace mechsim::cosim {
 
-// Accepting a topic type as input: field name -> block input name.
+// Accepting a topic type as input: field name -> block input name. Pairs whose input the
+// block does not declare (its configuration does not use it) are skipped.
 struct InputGroup {
   const transport::TopicType* topic_type;
   std::vector<std::pair<std::string, std::string>> field_to_input;
@@ -27,8 +28,10 @@ struct NodeType {
   const transport::TopicType* publishes;  // its state topic type
   std::string topic_suffix;               // topic = "<instance>/<suffix>"
   // Parses and validates params (throws config::ConfigError) and builds the block. The
-  // block's outputs named like the topic fields are published.
-  std::function<std::unique_ptr<models::Block>(const config::ConfigNode& params)> make_block;
+  // block's outputs named like the topic fields are published. `coupling` is the element
+  // at the cut of a connection to or from this participant (nullptr when there is none).
+  std::function<std::unique_ptr<models::Block>(const config::ConfigNode& params, const config::ConfigNode* coupling)>
+      make_block;
   std::vector<InputGroup> accepts;
 
   const InputGroup* group_for(const transport::TopicType& t) const;
@@ -40,5 +43,8 @@ const NodeType* find_node_type(const std::string& name);
 // Registration of each node type lives in src/node_types/<type>.cpp.
 NodeType cam_shaft_node_type();
 NodeType follower_node_type();
+NodeType servo_amplifier_node_type();
+NodeType tachometer_node_type();
+NodeType slide_node_type();
 
 }  // namespace mechsim::cosim

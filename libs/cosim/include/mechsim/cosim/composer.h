@@ -30,6 +30,11 @@ class CompositeBlock final : public models::Block {
                        std::span<double> g) const override;
   bool handle_events(double t, std::span<double> x, std::span<const double> u,
                      std::span<const int> crossed) override;
+  // Sampled blocks keep their own sample times: the composite samples at the shortest and
+  // updates each block at its own instants (every sample time must be a whole multiple of
+  // the shortest).
+  double sample_time() const override { return sample_time_; }
+  void discrete_update(double t, std::span<double> x, std::span<const double> u) override;
   // Events of every block, with the kind prefixed by the participant ("follower.lift_off").
   std::vector<models::BlockEvent> take_event_log() override;
   std::vector<double> save_discrete_state() const override;
@@ -47,7 +52,10 @@ class CompositeBlock final : public models::Block {
   ScenePlan& plan_;
   std::vector<std::vector<Wire>> wires_;        // per block
   std::vector<int> state_base_, output_base_, event_base_;
-  int passes_ = 1;                              // evaluation sweeps needed for feedthrough chains
+  int passes_ = 1;
+  double sample_time_ = 0.0;
+  std::vector<long> sample_ratio_;              // per block: its sample time / sample_time_, 0 = continuous
+  long samples_taken_ = 0;                      // discrete updates of the composite so far                              // evaluation sweeps needed for feedthrough chains
   mutable std::vector<std::vector<double>> u_, y_;
 };
 

@@ -1,9 +1,22 @@
-// The cam shaft as a block: a constant-speed drive turning the cam, publishing the lift
-// law and the pressure angle at the current angle (spec cam.md §1, §2, §4).
+// The cam shaft as a block (spec cam.md §1, §2, §4): turns the cam and publishes the lift
+// law and the pressure angle at the current angle.
+//
+// Two kinds of drive (shaft_drive.h):
+//  - constant speed (an ideal speed source): no state, θ = θ0 + ω t;
+//  - a torque source (constant torque or a motor line) on the shaft inertia I (shaft +
+//    flywheel): states θ, ω with
+//        (I + J_r) ω̇ = T_drive(ω) − M_rest
+//    where J_r = m S'² is the inertia a rigid follower reflects onto the shaft and M_rest
+//    the torque of all its other forces. Carrying J_r here, on the side that integrates ω,
+//    breaks the algebraic loop a rigid follower would otherwise close across the cut
+//    (docs/cam-dynamics.md): the follower's M_rest and J_r do not depend on ω̇.
 #pragma once
+
+#include <optional>
 
 #include "mechsim/models/block.h"
 #include "mechsim/models/cam/motion_law.h"
+#include "mechsim/models/cam/shaft_drive.h"
 
 namespace mechsim::models::cam {
 
@@ -11,22 +24,35 @@ struct CamShaftParams {
   MotionLaw law;
   double pitch_radius;   // R0, m
   double eccentricity;   // e, m
-  double speed;          // rad/s, constant
+  double speed;          // rad/s: the constant speed, or with a torque drive the nominal
+                         // (design) speed ω_avg and the default initial speed
   double initial_angle;  // rad, at t = 0
+  ShaftDrive drive{};                   // default: constant speed
+  double inertia_kgm2 = 0.0;            // I: shaft + flywheel (torque drives, > 0)
+  std::optional<double> initial_speed{};  // rad/s at t = 0 (torque drives); default: speed
 };
 
-// No state: θ(t) = initial_angle + speed · t (initial_angle is the angle at t = 0). Input: load_torque (N m, default 0: the torque the
-// follower demands). Outputs: angle, speed, lift, lift_d1, lift_d2, pressure_angle,
-// shaft_torque (= load_torque), drive_power (= shaft_torque · speed); only the last two
-// have feedthrough.
+// Inputs: load_torque (N m, default 0: the torque the follower demands except its
+// reflected-inertia part, i.e. the follower's drive_torque_rest), reflected_inertia
+// (kg m², default 0). Outputs: angle, speed, lift, lift_d1, lift_d2, pressure_angle,
+// shaft_torque (torque the drive delivers: the load torque for a speed source, T_drive(ω)
+// for a torque source), drive_power (= shaft_torque · speed), acceleration (ω̇; 0 at
+// constant speed). Feedthrough: at constant speed shaft_torque and drive_power from
+// load_torque; with a torque drive only acceleration, from both inputs.
 class CamShaftBlock : public Block {
  public:
   explicit CamShaftBlock(CamShaftParams params);
 
+  void initial_state(double t0, std::span<double> x) const override;
+  void derivatives(double t, std::span<const double> x, std::span<const double> u,
+                   std::span<double> dxdt) const override;
   void calc_outputs(double t, std::span<const double> x, std::span<const double> u,
                     std::span<double> y) const override;
 
   const CamShaftParams& params() const { return params_; }
+  bool has_dynamic_drive() const { return params_.drive.is_torque_source(); }
+  // ω̇ of a torque drive at speed ω under the given load (0 for a speed source).
+  double angular_acceleration(double speed, double load_torque_rest, double reflected_inertia) const;
 
  private:
   CamShaftParams params_;

@@ -10,7 +10,11 @@ namespace mechsim::models::follower {
 // Inputs (required unless noted): angle, speed, lift, lift_d1, lift_d2, pressure_angle,
 // acceleration (dω/dt, optional, default 0). Outputs: position, velocity, acceleration,
 // contact_force, contact (1 when N ≥ 0), drive_torque, spring_force, load_force,
-// inertia_force; each with feedthrough from the inputs it uses.
+// inertia_force, then for a dynamic cam shaft drive_torque_rest (the drive torque without
+// m S'² ω̇) and reflected_inertia (m S'²), and lift_off_count (always 0: a rigid follower
+// cannot fly; N < 0 only says that a real one would); each with feedthrough from the
+// inputs it uses. drive_torque_rest and reflected_inertia do not depend on ω̇, which is
+// what keeps the loop with a dynamic cam shaft free of direct feedthrough.
 class FollowerBlock : public Block {
  public:
   explicit FollowerBlock(FollowerParams params);

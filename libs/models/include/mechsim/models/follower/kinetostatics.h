@@ -44,6 +44,9 @@ struct FollowerForces {
   double normal_component_n; // N cos α: the sum of the three above
   double contact_force_n;    // N
   double drive_torque_nm;    // M = (N cos α) S': the torque the shaft must deliver
+  // M without the part m S'² ω̇ that the shaft's acceleration causes: what a dynamic cam
+  // shaft receives when it carries the reflected inertia m S'² itself (spec §4).
+  double drive_torque_rest_nm;
 };
 
 // Forces on the rigid follower at cam angle θ for the follower lift S, S', S'' (m, m/rad,

@@ -37,6 +37,7 @@
 //   in  position_setpoint        m      required, only with SetpointSource::external
 //   out armature_voltage         V      spindle_angle, position_setpoint, tacho_voltage (current limit)
 //   out position_reference       m      position_setpoint
+//   out following_error          m      spindle_angle, position_setpoint: reference − spindle_angle·lead/2π
 //   out velocity_error           V      spindle_angle, position_setpoint
 //   out saturated                1      as armature_voltage; 1 while U_a != u
 #pragma once
@@ -113,7 +114,7 @@ class ServoAmplifierBlock final : public Block {
     int tacho_voltage, spindle_angle, position_setpoint = -1;
   } in_;
   struct Outputs {
-    int armature_voltage, position_reference, velocity_error, saturated;
+    int armature_voltage, position_reference, following_error, velocity_error, saturated;
   } out_;
   struct States {
     int integrator, filtered_tacho_voltage;

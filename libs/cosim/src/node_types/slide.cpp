@@ -1,0 +1,34 @@
+// Node type `slide`: spindle, nut and slide behind the motor coupling (spec nc_slide.md
+// §2-§3), rigid, two-mass or modal, publishing <name>/state (SlideState). Reads the motor's
+// angle and speed across the coupling, which it always evaluates itself.
+#include "mechsim/cosim/catalog.h"
+#include "mechsim/cosim/nc_params.h"
+#include "mechsim/models/nc/slide_block.h"
+
+namespace mechsim::cosim {
+
+namespace {
+std::unique_ptr<models::Block> make_slide(const config::ConfigNode& p, const config::ConfigNode* coupling) {
+  models::nc::SlideBlockOptions options = parse_slide_options(p);
+  if (coupling) {
+    options.coupling = parse_coupling(*coupling).params;
+    options.coupling_input = models::nc::CouplingInput::compliant;  // both schemes: the slide side evaluates it
+  }
+  try {
+    return std::make_unique<models::nc::SlideBlock>(options);
+  } catch (const std::invalid_argument& e) {
+    p.fail(std::string("expected consistent slide parameters: ") + e.what());
+  }
+}
+}  // namespace
+
+NodeType slide_node_type() {
+  return {"slide",
+          "ball-screw spindle, nut and slide (rigid, two-mass or modal) behind the coupling; publishes SlideState",
+          transport::find_topic_type("SlideState"),
+          "state",
+          make_slide,
+          {{transport::find_topic_type("TachoState"), {{"motor_angle", "motor_angle"}, {"motor_speed", "motor_speed"}}}}};
+}
+
+}  // namespace mechsim::cosim

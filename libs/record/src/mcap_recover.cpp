@@ -1,0 +1,95 @@
+#include "mechsim/record/mcap_recover.h"
+
+#include <filesystem>
+#include <stdexcept>
+
+#include "chunk_codec.h"
+#include "data_scanner.h"
+#include "file_sink.h"
+#include "records.h"
+
+namespace mechsim::record {
+
+using namespace detail;
+
+RecoveryReport recover(const std::string& in, const std::string& out) {
+  std::error_code ec;
+  if (std::filesystem::equivalent(in, out, ec))
+    throw std::invalid_argument("recover: input and output are the same file '" + in + "'");
+
+  const InputFile file(in);
+  const DataScan scan = scan_data_section(file);  // throws McapError without magic
+  RecoveryReport report;
+  FooterRecord footer;
+  report.input_complete = read_footer(file, footer);
+  report.input_size = file.size();
+  report.scan_end = scan.end;
+  report.stop_reason = scan.stop_reason;
+
+  const HeaderRecord header = scan.header_complete ? scan.header : HeaderRecord{"", "mechsim"};
+  McapFileSink sink(out, header, /*sync_chunks=*/false);
+
+  for (const ScannedRecord& rec : scan.records) {
+    switch (rec.opcode) {
+      case op::schema: {
+        const Schema s = decode_schema(file.read(rec.content_offset(), rec.content_length), rec.offset);
+        if (s.id != 0 && !sink.has_schema(s.id)) {
+          sink.write_schema(s);
+          ++report.schemas;
+        }
+        break;
+      }
+      case op::channel: {
+        const Channel c = decode_channel(file.read(rec.content_offset(), rec.content_length), rec.offset);
+        if (!sink.has_channel(c.id)) {
+          sink.write_channel(c);
+          ++report.channels;
+        }
+        break;
+      }
+      case op::message: {
+        const Buffer content = file.read(rec.content_offset(), rec.content_length);
+        sink.write_loose_message(decode_message(content, rec.offset));
+        ++report.messages;
+        break;
+      }
+      case op::chunk: {
+        const Buffer raw = file.read(rec.offset, rec.total_length());
+        ChunkHeader chunk_header;
+        Buffer records;
+        ChunkContents contents;
+        try {
+          chunk_header = decode_chunk(std::span<const uint8_t>(raw).subspan(kRecordPrefixSize), rec.offset);
+          records = open_chunk(chunk_header, rec.offset);
+          contents = parse_chunk_records(records, rec.offset);
+        } catch (const McapError&) {
+          ++report.chunks_dropped;  // a complete chunk that is corrupt: its data is lost
+          break;
+        }
+        for (const auto& s : contents.schemas)
+          if (s.id != 0 && !sink.has_schema(s.id)) {
+            sink.remember_schema(s);
+            ++report.schemas;
+          }
+        for (const auto& c : contents.channels)
+          if (!sink.has_channel(c.id)) {
+            sink.remember_channel(c);
+            ++report.channels;
+          }
+        MessageIndex index;
+        for (std::size_t k = 0; k < contents.messages.size(); ++k)
+          index[contents.messages[k].channel_id].push_back(
+              {contents.messages[k].log_time, contents.message_offsets[k]});
+        sink.write_chunk(raw, chunk_header, index);  // byte for byte
+        ++report.chunks;
+        report.messages += contents.messages.size();
+        break;
+      }
+      default: break;  // MessageIndex is rebuilt; Attachment/Metadata are not carried over
+    }
+  }
+  sink.finish();
+  return report;
+}
+
+}  // namespace mechsim::record

@@ -1,0 +1,121 @@
+// Corrupted bytes are detected by the CRCs, never silently read as data.
+#include <gtest/gtest.h>
+
+#include "mechsim/record/mcap_reader.h"
+#include "mechsim/record/mcap_recover.h"
+#include "mechsim/record/mcap_writer.h"
+#include "record_test_support.h"
+
+namespace mechsim::record {
+namespace {
+
+class McapCorruption : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    path_ = dir_.file("clean.mcap");
+    WriterOptions options;
+    // Uncompressed, so a flipped byte still decompresses and only the CRC can catch it.
+    options.compression = Compression::none;
+    options.chunk_size = 4096;
+    sample_ = test::write_sample(path_, options, 600);
+    bytes_ = test::read_bytes(path_);
+    const McapReader reader(path_);
+    chunks_ = reader.chunks();
+    ASSERT_GE(chunks_.size(), 3u);
+  }
+  // Writes the file with one payload byte of chunk `k` flipped; returns its path.
+  std::string with_flipped_chunk_byte(std::size_t k) {
+    auto bytes = bytes_;
+    const ChunkInfo& c = chunks_.at(k);
+    bytes.at(c.chunk_start_offset + c.chunk_length - 3) ^= 0x40;  // last message's payload
+    const std::string path = dir_.file("flipped.mcap");
+    test::write_bytes(path, bytes.data(), bytes.size());
+    return path;
+  }
+
+  test::ScratchDir dir_;
+  std::string path_;
+  test::SampleRecording sample_;
+  std::vector<uint8_t> bytes_;
+  std::vector<ChunkInfo> chunks_;
+};
+
+TEST_F(McapCorruption, ChunkCrcMismatchIsReportedWhenReading) {
+  const McapReader reader(with_flipped_chunk_byte(1));  // the summary is intact
+  EXPECT_TRUE(reader.complete());
+  try {
+    reader.read_messages();
+    FAIL() << "a corrupt chunk was read without complaint";
+  } catch (const McapError& e) {
+    EXPECT_NE(std::string(e.what()).find("CRC mismatch"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(std::to_string(chunks_[1].chunk_start_offset)),
+              std::string::npos) << e.what();
+  }
+  EXPECT_NO_THROW(reader.read_chunk(chunks_[0]));
+  EXPECT_THROW(reader.read_chunk(chunks_[1]), McapError);
+}
+
+TEST_F(McapCorruption, VerifyReportsChunkAndDataSectionCrc) {
+  const McapReader reader(with_flipped_chunk_byte(2));
+  const auto problems = reader.verify();
+  ASSERT_EQ(problems.size(), 2u);
+  EXPECT_NE(problems[0].find("data section CRC mismatch"), std::string::npos) << problems[0];
+  EXPECT_NE(problems[1].find("CRC mismatch"), std::string::npos) << problems[1];
+  EXPECT_TRUE(McapReader(path_).verify().empty());
+}
+
+TEST_F(McapCorruption, RecoveryDropsTheCorruptChunkOnly) {
+  const std::string out = dir_.file("recovered.mcap");
+  const RecoveryReport report = recover(with_flipped_chunk_byte(1), out);
+  EXPECT_EQ(report.chunks_dropped, 1u);
+  EXPECT_EQ(report.chunks, chunks_.size() - 1);
+  const McapReader clean(path_);
+  const std::size_t lost = clean.read_chunk(chunks_[1]).size();
+  const McapReader recovered(out);
+  EXPECT_EQ(recovered.statistics().message_count, sample_.messages.size() - lost);
+  EXPECT_TRUE(recovered.verify().empty());
+}
+
+TEST_F(McapCorruption, SummaryCrcMismatchIsRefusedAndRecoverable) {
+  auto bytes = bytes_;
+  const uint64_t summary_start = test::le_u64(bytes, bytes.size() - 8 - 29 + 9);
+  bytes.at(summary_start + 20) ^= 0x01;
+  const std::string path = dir_.file("bad_summary.mcap");
+  test::write_bytes(path, bytes.data(), bytes.size());
+  try {
+    McapReader reader(path);
+    FAIL() << "a corrupt summary was accepted";
+  } catch (const McapError& e) {
+    EXPECT_NE(std::string(e.what()).find("summary CRC mismatch"), std::string::npos) << e.what();
+  }
+  const std::string out = dir_.file("rebuilt.mcap");
+  EXPECT_EQ(recover(path, out).messages, sample_.messages.size());
+  EXPECT_TRUE(McapReader(out).read_messages() == sample_.messages);
+}
+
+TEST_F(McapCorruption, NotAnMcapFileIsRefused) {
+  auto bytes = bytes_;
+  bytes[1] = 'X';
+  const std::string path = dir_.file("no_magic.mcap");
+  test::write_bytes(path, bytes.data(), bytes.size());
+  EXPECT_THROW(McapReader{path}, McapError);
+  EXPECT_THROW(McapReader{dir_.file("missing.mcap")}, McapError);
+}
+
+TEST(McapCorruptionCompressed, FlippedCompressedByteIsDetected) {
+  // In a zstd chunk a flipped byte breaks either the frame or the CRC: both are errors.
+  test::ScratchDir dir;
+  const std::string path = dir.file("z.mcap");
+  WriterOptions options;
+  options.chunk_size = 4096;
+  test::write_sample(path, options, 600);
+  auto bytes = test::read_bytes(path);
+  const ChunkInfo chunk = McapReader(path).chunks().at(1);
+  bytes.at(chunk.chunk_start_offset + chunk.chunk_length - chunk.compressed_size / 2) ^= 0x40;
+  const std::string bad = dir.file("z_bad.mcap");
+  test::write_bytes(bad, bytes.data(), bytes.size());
+  EXPECT_THROW(McapReader(bad).read_messages(), McapError);
+}
+
+}  // namespace
+}  // namespace mechsim::record
