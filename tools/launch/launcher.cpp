@@ -102,12 +102,13 @@ std::string last_error_line(const std::string& log_path) {
   return last;
 }
 
-// Names the connections of a diverged node that cross a cut (those with a coupling element
-// first) and suggests a smaller macro step.
+// Names the connections that cross a coupling element (instability travels round the
+// loop, so the node that noticed it first need not sit at the cut), else the diverged
+// node's own connections, and suggests a smaller macro step.
 std::string Run::divergence_advice(const std::string& node) const {
   std::string cuts;
   for (const auto& c : scene_.connections)
-    if ((c.from == node || c.to == node) && c.coupling)
+    if (c.coupling)
       cuts += (cuts.empty() ? "" : ", ") + c.from + " -> " + c.to + " (" + c.key_path + ", coupling element)";
   if (cuts.empty())
     for (const auto& c : scene_.connections)

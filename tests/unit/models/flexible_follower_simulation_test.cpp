@@ -14,6 +14,9 @@
 #include "mechsim/models/cam/geometry.h"
 #include "mechsim/models/follower/flexible_follower_block.h"
 
+#ifndef MRTOL
+#define MRTOL 1e-11
+#endif
 namespace mechsim::models {
 namespace {
 
@@ -91,9 +94,9 @@ TEST(FlexibleFollowerSimulation, MultiRiseAgreesWithTheVibrationAnalysis) {
   double max_error = 0.0;
   FlexibleFollowerBlock b(p);
   const auto run = testing::drive_follower(
-      b, testing::press_cam_shaft(pi), cycles * period, tolerances(solve::Method::cvode_adams, 1e-11, 1e-15), times,
+      b, testing::press_cam_shaft(pi), cycles * period, tolerances(solve::Method::cvode_adams, MRTOL, 1e-15), times,
       [&](double t, std::span<const double> x, std::span<const double> u) {
-        const double gamma = (x[0] + f0 / kf) / s_max;
+        const double gamma = (u[2] - x[0] + f0 / kf) / s_max;  // y = S − δ
         gamma_at.emplace_back(t, gamma);
         max_error = std::max(max_error, std::abs(gamma - u[2] / s_max));
       });
@@ -103,6 +106,7 @@ TEST(FlexibleFollowerSimulation, MultiRiseAgreesWithTheVibrationAnalysis) {
     for (const auto& s : r.samples) {
       const double t = (cycles - 1 + s.tau) * period;
       auto it = std::lower_bound(gamma_at.begin(), gamma_at.end(), std::make_pair(t, -1e300));
+      if (std::abs(it->second - s.gamma) > worst || std::fmod(s.tau, 0.05) < 0.0015) std::cout << "  tau " << s.tau << " g_cv " << it->second << " g_rk " << s.gamma << " theta " << s.excitation << " d " << it->second - s.gamma << "\n";
       worst = std::max(worst, std::abs(it->second - s.gamma));
     }
     return worst;
@@ -117,18 +121,18 @@ TEST(FlexibleFollowerSimulation, MultiRiseAgreesWithTheVibrationAnalysis) {
 }
 
 TEST(FlexibleFollowerSimulation, Explore) {
-  for (double factor : {1.0, 1e2, 1e4})
-  for (double zeta : {0.08, 1.0})
-   for (double rtol : {1e-6, 1e-8})
-    for (bool loads : {false})
+  for (double factor : {1e4})
+  for (double zeta : {0.08, 0.3, 1.0})
+   for (double rtol : {1e-6})
+    for (bool loads : {false, true})
       for (auto method : {solve::Method::cvode_bdf, solve::Method::cvode_adams, solve::Method::arkode_erk}) {
         auto p = press_flexible(factor, loads);
         p.contact.contact_damping_n_s_per_m = follower::damping_for_ratio(zeta, p.contact.stiffness_n_per_m, 25.0);
         FlexibleFollowerBlock b(p);
-        auto o = tolerances(method, rtol, 1e-9 * rtol / 1e-6);
+        auto o = tolerances(method, rtol, 1e-9 * rtol / 1e-6 / factor);
         o.max_step = 5e-3;
         const auto run = testing::drive_follower(b, testing::press_cam_shaft(pi), 2.0, o);
-        std::cout << "kf x" << factor << " zeta " << zeta << " rtol " << rtol << " method " << (method == solve::Method::cvode_bdf ? "BDF" : method == solve::Method::cvode_adams ? "Adams" : "ERK")
+        std::cout << "kf x" << factor << " loads " << loads << " zeta " << zeta << " rtol " << rtol << " method " << (method == solve::Method::cvode_bdf ? "BDF" : method == solve::Method::cvode_adams ? "Adams" : "ERK")
                   << ": steps " << run.stats.steps << " rhs " << run.stats.rhs_evals << " jac " << run.stats.jacobian_evals
                   << " etf " << run.stats.error_test_failures << " order " << run.stats.last_order << " events " << run.events.size() << "\n";
       }

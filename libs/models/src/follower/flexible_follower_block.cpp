@@ -12,7 +12,7 @@ enum Input { in_angle, in_speed, in_lift, in_lift_d1, in_lift_d2, in_pressure_an
 enum Output { out_position, out_velocity, out_acceleration, out_contact_force, out_contact,
               out_drive_torque, out_spring_force, out_load_force, out_inertia_force,
               out_drive_torque_rest, out_reflected_inertia, out_lift_off_count, out_deflection };
-enum State { x_position, x_velocity };
+enum State { x_deflection, x_velocity };
 enum Event { ev_lift_off, ev_landing };
 
 double wrapped_degrees(double theta_rad) {
@@ -68,14 +68,14 @@ FlexibleFollowerBlock::FlexibleFollowerBlock(FlexibleFollowerParams params)
   declare_output("reflected_inertia", "kg*m^2");
   declare_output("lift_off_count", "1");
   declare_output("deflection", "m", {lift});
-  declare_state("position", "m");
+  declare_state("deflection", "m");
   declare_state("velocity", "m/s");
 }
 
 void FlexibleFollowerBlock::initial_state(double, std::span<double> x) const {
   mode_ = Mode{};
   log_.clear();
-  x[x_position] = static_position(params_, params_.initial_lift_m);
+  x[x_deflection] = params_.initial_lift_m - static_position(params_, params_.initial_lift_m);
   x[x_velocity] = 0.0;
 }
 
@@ -83,7 +83,7 @@ double FlexibleFollowerBlock::contact_force(std::span<const double> x, std::span
   if (!mode_.in_contact) return 0.0;
   const FollowerContact& c = params_.contact;
   const double deflection_rate = u[in_lift_d1] * u[in_speed] - x[x_velocity];
-  const double f = c.stiffness_n_per_m * (u[in_lift] - x[x_position]) + c.contact_damping_n_s_per_m * deflection_rate;
+  const double f = c.stiffness_n_per_m * x[x_deflection] + c.contact_damping_n_s_per_m * deflection_rate;
   // Within the root-finding tolerance of a lift-off F may be a hair below zero: the
   // contact cannot pull.
   return std::max(0.0, f);
@@ -91,7 +91,7 @@ double FlexibleFollowerBlock::contact_force(std::span<const double> x, std::span
 
 double FlexibleFollowerBlock::acceleration(std::span<const double> x, std::span<const double> u) const {
   const FollowerParams& f = params_.follower;
-  const double spring = f.spring.preload_n + f.spring.stiffness_n_per_m * x[x_position];
+  const double spring = f.spring.preload_n + f.spring.stiffness_n_per_m * (u[in_lift] - x[x_deflection]);
   return (contact_force(x, u) - functional_load(f.loads, u[in_angle]) - spring -
           params_.contact.frame_damping_n_s_per_m * x[x_velocity]) /
          f.mass;
@@ -99,7 +99,7 @@ double FlexibleFollowerBlock::acceleration(std::span<const double> x, std::span<
 
 void FlexibleFollowerBlock::derivatives(double, std::span<const double> x, std::span<const double> u,
                                         std::span<double> dxdt) const {
-  dxdt[x_position] = x[x_velocity];
+  dxdt[x_deflection] = u[in_lift_d1] * u[in_speed] - x[x_velocity];  // Ṡ − ẏ
   dxdt[x_velocity] = acceleration(x, u);
 }
 
@@ -108,19 +108,19 @@ void FlexibleFollowerBlock::calc_outputs(double, std::span<const double> x, std:
   const FollowerParams& f = params_.follower;
   const double force = contact_force(x, u);
   const double a = acceleration(x, u);
-  y[out_position] = x[x_position];
+  y[out_position] = u[in_lift] - x[x_deflection];
   y[out_velocity] = x[x_velocity];
   y[out_acceleration] = a;
   y[out_contact_force] = force / std::cos(u[in_pressure_angle]);
   y[out_contact] = mode_.in_contact ? 1.0 : 0.0;
   y[out_drive_torque] = force * u[in_lift_d1];
-  y[out_spring_force] = f.spring.preload_n + f.spring.stiffness_n_per_m * x[x_position];
+  y[out_spring_force] = f.spring.preload_n + f.spring.stiffness_n_per_m * y[out_position];
   y[out_load_force] = functional_load(f.loads, u[in_angle]);
   y[out_inertia_force] = f.mass * a;
   y[out_drive_torque_rest] = y[out_drive_torque];
   y[out_reflected_inertia] = 0.0;
   y[out_lift_off_count] = static_cast<double>(mode_.lift_offs);
-  y[out_deflection] = u[in_lift] - x[x_position];
+  y[out_deflection] = x[x_deflection];
 }
 
 Crossing FlexibleFollowerBlock::event_direction(int index) const {
@@ -129,7 +129,7 @@ Crossing FlexibleFollowerBlock::event_direction(int index) const {
 
 double FlexibleFollowerBlock::contact_function(std::span<const double> x, std::span<const double> u) const {
   const FollowerContact& c = params_.contact;
-  const double spring = c.stiffness_n_per_m * (u[in_lift] - x[x_position]);  // k_f (S − y)
+  const double spring = c.stiffness_n_per_m * x[x_deflection];  // k_f (S − y)
   const double force = spring + c.contact_damping_n_s_per_m * (u[in_lift_d1] * u[in_speed] - x[x_velocity]);
   return std::min(spring, force);
 }

@@ -1,0 +1,93 @@
+// The NC position loop closed across three processes (servo amplifier | motor + tacho |
+// slide), against the monolithic reference and the spec's figures; and a macro step
+// beyond the coupling's stability limit stopping with a message instead of garbage.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "run_command.h"
+
+namespace mechsim::testing {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+const std::string kMechsim = std::string(MECHSIM_BIN_DIR) + "/mechsim";
+std::string scene(const std::string& name) { return std::string(MECHSIM_SOURCE_DIR) + "/config/scenes/" + name; }
+
+class NcLoop : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("mechsim-nc-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
+                                        "-" + std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    EXPECT_TRUE(processes_mentioning(dir_.string()).empty()) << "processes left behind";
+    if (!HasFailure()) fs::remove_all(dir_);
+  }
+  CommandResult launch(const std::string& scene_file, std::vector<std::string> extra = {}) {
+    std::vector<std::string> a{kMechsim, "launch", scene(scene_file), "--runs-dir", (dir_ / "runs").string(),
+                               "--json", (dir_ / "summary.json").string(), "--no-plot", "--no-progress"};
+    a.insert(a.end(), extra.begin(), extra.end());
+    return run(a, (dir_ / "launch.log").string(), 180);
+  }
+  json summary() const { return json::parse(slurp((dir_ / "summary.json").string())); }
+  fs::path dir_;
+};
+
+const json& figure(const json& s, const std::string& stat, const std::string& signal) {
+  for (const auto& f : s["report"])
+    if (f["stat"] == stat && f["signal"] == signal) return f;
+  throw std::runtime_error("no figure " + stat + " " + signal);
+}
+
+TEST_F(NcLoop, ShippedStepSceneIsStableAndAccurateAsShipped) {
+  CommandResult r = launch("nc_slide_loop.yaml");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  json s = summary();
+  const json& step = figure(s, "step_response", "slide.slide_position");
+  const json& ref = step["reference"];
+  // The monolithic reference against spec nc_slide.md §3 (continuous controller): rise
+  // 34.4 ms, no overshoot, 2 % settling 94.7 ms; +-3 % as the issue allows for a model
+  // whose constants were identified to three digits.
+  EXPECT_NEAR(ref["rise_time_s"].get<double>(), 0.0344, 0.03 * 0.0344);
+  EXPECT_NEAR(ref["settling_time_s"].get<double>(), 0.0947, 0.03 * 0.0947);
+  EXPECT_LT(ref["overshoot_pct"].get<double>(), 1e-6);
+  // Distributed against the reference (issue 4, "the stiff cut"): rise time and final
+  // position within 1 %, settling within 2 %.
+  EXPECT_LT(step["relative_difference"]["rise_time_s"].get<double>(), 0.01);
+  EXPECT_LT(step["relative_difference"]["settling_time_s"].get<double>(), 0.02);
+  EXPECT_LT(std::abs(step["final_value"].get<double>() - ref["final_value"].get<double>()), 0.01 * 1e-4);
+  EXPECT_TRUE(step["settled"].get<bool>());
+}
+
+TEST_F(NcLoop, AMacroStepBeyondTheStabilityLimitStopsWithAdvice) {
+  // 200 us is twice the measured limit of the compliant coupling (docs/nc-loop.md).
+  CommandResult r = launch("nc_slide_loop.yaml", {"--step", "200 us"});
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("diverged"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("tacho -> slide"), std::string::npos) << r.output;  // the connection
+  EXPECT_NE(r.output.find("--step '50 us'"), std::string::npos) << r.output;  // a step to try
+}
+
+TEST_F(NcLoop, FollowingErrorAtConstantFeedIsVelocityOverGain) {
+  CommandResult r = launch("nc_slide_move.yaml");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  // Spec §3: at constant feed without feed-forward the following error is v/K_v =
+  // 0.1 m/s / 40 1/s = 2.5 mm; the transient adds nothing at the end of the cruise, so
+  // the largest error is that value to within 1 % (the position measurement lags through
+  // the spindle twist by micrometres).
+  EXPECT_NEAR(figure(summary(), "max_abs", "servo.following_error")["value"].get<double>(), 2.5e-3, 0.01 * 2.5e-3);
+  CommandResult ff = launch("nc_slide_move.yaml", {"--set", "servo.velocity_feedforward=1"});
+  ASSERT_EQ(ff.exit_code, 0) << ff.output;
+  // With full feed-forward the steady following error vanishes; what is left comes from
+  // the acceleration phases: an order of magnitude below v/K_v.
+  EXPECT_LT(figure(summary(), "max_abs", "servo.following_error")["value"].get<double>(), 0.25e-3);
+}
+
+}  // namespace
+}  // namespace mechsim::testing
