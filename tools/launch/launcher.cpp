@@ -310,6 +310,18 @@ json Run::summarise(const RunOutcome& out) {
                      {"log", run_dir_ + "/" + p.name + ".log"}};
   }
   s["nodes"] = nodes;
+  // Events the nodes reported (lift-off, landing, ...), from <node>.events.jsonl.
+  json events = json::array();
+  for (auto& p : processes_.processes()) {
+    std::ifstream in(run_dir_ + "/" + p.name + ".events.jsonl");
+    for (std::string line; std::getline(in, line);) {
+      json e = json::parse(line, nullptr, false);
+      if (e.is_discarded()) continue;
+      e["node"] = p.name;
+      events.push_back(e);
+    }
+  }
+  s["events"] = events;
   return s;
 }
 
@@ -414,6 +426,11 @@ int Run::execute() {
                   e["max_abs_error"].get<double>(), e["unit"].get<std::string>().c_str(),
                   100 * e["max_rel_error"].get<double>(), e["rms_abs_error"].get<double>());
     print_figures(summary["report"]);
+    if (!summary["events"].empty()) {
+      std::map<std::string, int> counts;
+      for (const auto& e : summary["events"]) ++counts[e["node"].get<std::string>() + "." + e.value("kind", "?")];
+      for (const auto& [kind, n] : counts) std::printf("  events: %d x %s (details in the summary JSON)\n", n, kind.c_str());
+    }
     std::printf("  run folder: %s\n", run_dir_.c_str());
     return 0;
   }

@@ -5,6 +5,7 @@
 
 #include <functional>
 #include <span>
+#include <stdexcept>
 #include <vector>
 
 #include "mechsim/models/cam/cam_shaft_block.h"
@@ -26,7 +27,9 @@ struct DrivenRun {
 
 // Integrates `follower` over [0, t_end], fed from `cam` (inputs by name: angle, speed,
 // lift, ...). `sample_times` (ascending) are stopped at exactly; `on_sample(t, x, u)` sees
-// the follower's state and inputs there.
+// the follower's state and inputs there. options.max_step must be set: a follower at rest
+// in a dwell has zero derivatives, and an unbounded solver would step over the whole cam
+// motion in one go (a node is bounded by its macro step instead).
 inline DrivenRun drive_follower(
     models::Block& follower, const models::cam::CamShaftBlock& cam, double t_end, solve::SolverOptions options,
     const std::vector<double>& sample_times = {},
@@ -39,6 +42,7 @@ inline DrivenRun drive_follower(
     cam.calc_outputs(t, {}, std::vector<double>(cam.num_inputs(), 0.0), y_cam);
     for (int i = 0; i < follower.num_inputs(); ++i) u[i] = source[i] >= 0 ? y_cam[source[i]] : defaults[i];
   };
+  if (!(options.max_step > 0.0)) throw std::invalid_argument("drive_follower: set options.max_step");
   std::vector<double> x(follower.num_states());
   follower.initial_state(0.0, x);
   solve::BlockIntegrator integrator(follower, options, 0.0, x);

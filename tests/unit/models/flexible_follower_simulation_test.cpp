@@ -14,9 +14,6 @@
 #include "mechsim/models/cam/geometry.h"
 #include "mechsim/models/follower/flexible_follower_block.h"
 
-#ifndef MRTOL
-#define MRTOL 1e-11
-#endif
 namespace mechsim::models {
 namespace {
 
@@ -39,13 +36,25 @@ FlexibleFollowerParams press_flexible(double stiffness_factor = 1.0, bool with_l
   return p;
 }
 
-solve::SolverOptions tolerances(solve::Method method, double rtol, double atol) {
+// Solver settings; the step is bounded like a node's macro step bounds it (see
+// driven_follower.h).
+solve::SolverOptions tolerances(solve::Method method, double rtol, double atol, double max_step = 1e-3) {
   solve::SolverOptions o;
   o.method = method;
   o.rtol = rtol;
   o.atol = atol;
+  o.max_step = max_step;
   return o;
 }
+
+std::vector<BlockEvent> events_at(double speed, const FlexibleFollowerParams& p, int cycles) {
+  FlexibleFollowerBlock b(p);
+  return testing::drive_follower(b, testing::press_cam_shaft(speed), cycles * 2 * pi / speed,
+                                 tolerances(solve::Method::cvode_bdf, 1e-8, 1e-12))
+      .events;
+}
+
+double wrapped_deg(double rad) { return std::fmod(cam::rad_to_deg(rad), 360.0); }
 
 double value(const BlockEvent& e, const char* name) {
   for (const auto& [n, v] : e.values)
@@ -72,67 +81,139 @@ TEST(FlexibleFollowerSimulation, MultiRiseAgreesWithTheVibrationAnalysis) {
   // spring stiffness, and a constant preload F0 keeps the contact closed: with
   // z = y + F0/k_f, m z̈ + c ż + k_f z = k_f S, i.e. γ'' + 2ζ(2πλ')γ' + (2πλ')² γ = (2πλ')² θ
   // with γ = z/S_max, τ = t/T. Same start (γ = θ(0) = 0 at rest), so the two agree at every
-  // instant of all 20 cycles, not only in the steady state.
-  const cam::PressCam press;
-  const cam::MotionLaw law = press.law();
+  // instant of all 20 cycles, not only in the periodic steady state.
+  const cam::MotionLaw law = cam::PressCam{}.law();
   const double kf = report_stiffness(), f0 = 125.0, s_max = 0.025, period = 2.0;
   FlexibleFollowerParams p;
   p.follower = {25.0, {0.0, f0}, {}};
   p.contact = {kf, 0.0, follower::damping_for_ratio(0.08, kf, 25.0)};
   const double lambda_prime = cam::multi_rise_lambda(9.38, cam::deg_to_rad(70.0));
   const int cycles = 20;
-  const auto rk200 = cam::multi_rise(law, lambda_prime, 0.08, cycles, 200);
-  const auto rk400 = cam::multi_rise(law, lambda_prime, 0.08, cycles, 400);
+  const auto rk = cam::multi_rise(law, lambda_prime, 0.08, cycles, 200);
+  const auto rk_fine = cam::multi_rise(law, lambda_prime, 0.08, cycles, 400);
 
-  // Simulate once, sampled at the τ of both RK4 results in the last cycle.
-  std::vector<double> times;
-  for (const auto* r : {&rk200, &rk400})
-    for (const auto& s : r->samples) times.push_back((cycles - 1 + s.tau) * period);
-  std::sort(times.begin(), times.end());
-  times.erase(std::unique(times.begin(), times.end()), times.end());
-  std::vector<std::pair<double, double>> gamma_at;  // (t, γ)
-  double max_error = 0.0;
-  FlexibleFollowerBlock b(p);
-  const auto run = testing::drive_follower(
-      b, testing::press_cam_shaft(pi), cycles * period, tolerances(solve::Method::cvode_adams, MRTOL, 1e-15), times,
-      [&](double t, std::span<const double> x, std::span<const double> u) {
-        const double gamma = (u[2] - x[0] + f0 / kf) / s_max;  // y = S − δ
-        gamma_at.emplace_back(t, gamma);
-        max_error = std::max(max_error, std::abs(gamma - u[2] / s_max));
-      });
-  ASSERT_EQ(b.lift_off_count(), 0) << "the preload must keep the contact closed for model (a) to apply";
-  auto discrepancy = [&](const cam::MultiRiseResult& r) {
+  // The time simulation at two tolerances, sampled at the RK4 samples of the last cycle.
+  auto simulate = [&](double rtol, const cam::MultiRiseResult& at, double* max_error) {
+    std::vector<double> times, gamma;
+    for (const auto& s : at.samples) times.push_back((cycles - 1 + s.tau) * period);
+    FlexibleFollowerBlock b(p);
+    testing::drive_follower(b, testing::press_cam_shaft(pi), cycles * period,
+                            tolerances(solve::Method::cvode_adams, rtol, 1e-15), times,
+                            [&](double, std::span<const double> x, std::span<const double> u) {
+                              const double y = u[2] - x[0];  // S − δ
+                              gamma.push_back((y + f0 / kf) / s_max);
+                              if (max_error) *max_error = std::max(*max_error, std::abs(gamma.back() - u[2] / s_max));
+                            });
+    EXPECT_EQ(b.lift_off_count(), 0) << "the preload must keep the contact closed for model (a) to apply";
+    return gamma;
+  };
+  auto max_difference = [](const std::vector<double>& a, const std::vector<double>& b) {
     double worst = 0.0;
-    for (const auto& s : r.samples) {
-      const double t = (cycles - 1 + s.tau) * period;
-      auto it = std::lower_bound(gamma_at.begin(), gamma_at.end(), std::make_pair(t, -1e300));
-      if (std::abs(it->second - s.gamma) > worst || std::fmod(s.tau, 0.05) < 0.0015) std::cout << "  tau " << s.tau << " g_cv " << it->second << " g_rk " << s.gamma << " theta " << s.excitation << " d " << it->second - s.gamma << "\n";
-      worst = std::max(worst, std::abs(it->second - s.gamma));
-    }
+    for (std::size_t i = 0; i < a.size(); ++i) worst = std::max(worst, std::abs(a[i] - b[i]));
     return worst;
   };
-  const double d200 = discrepancy(rk200), d400 = discrepancy(rk400);
-  std::cout << "multi-rise: max |γ−θ| RK4 " << rk200.max_error << ", CVODE " << max_error
-            << "; max |γ_CVODE − γ_RK4| at 200 steps/period " << d200 << ", at 400 " << d400
-            << "; CVODE steps " << run.stats.steps << "\n";
-  EXPECT_LT(d400, d200 / 8);
-  EXPECT_LT(d200, 1e-6);
-  EXPECT_NEAR(max_error, rk200.max_error, 2 * d200);
+  auto rk_gamma = [](const cam::MultiRiseResult& r) {
+    std::vector<double> g;
+    for (const auto& s : r.samples) g.push_back(s.gamma);
+    return g;
+  };
+  double sim_max_error = 0.0;
+  const auto sim = simulate(1e-10, rk, &sim_max_error);
+  const auto sim_tight = simulate(1e-12, rk, nullptr);
+  const auto sim_on_fine = simulate(1e-10, rk_fine, nullptr);
+  const double discrepancy = max_difference(sim, rk_gamma(rk));
+  // Error estimates of both sides: CVODE against itself at 100× tighter tolerance, RK4
+  // against itself at half the step (both are converging methods, so the difference to the
+  // refined run bounds the error of the coarse one up to a factor near 1).
+  const double cvode_error = max_difference(sim, sim_tight);
+  const double rk_error = std::abs(max_difference(sim_on_fine, rk_gamma(rk_fine)) - discrepancy) + 
+                          std::abs(rk.max_error - rk_fine.max_error);
+  std::cout << "multi-rise, cycle " << cycles << ": max |γ−θ| RK4 " << rk.max_error << ", CVODE (at the RK4 samples) "
+            << sim_max_error << "; max |γ_CVODE − γ_RK4| " << discrepancy << " (CVODE error est. " << cvode_error
+            << ", RK4 error est. " << rk_error << ")\n";
+  // The two agree within their own estimated errors (×2 for the estimates' own accuracy),
+  // with a floor of 1e-9 (25 pm of follower motion) for rounding over ~1e6 steps.
+  const double tolerance = 2.0 * (cvode_error + rk_error) + 1e-9;
+  EXPECT_LT(discrepancy, tolerance);
+  // And so does the figure the report quotes (max |γ − θ| ≈ 6.0e-3, sampled at the same τ).
+  double rk_max_at_samples = 0.0;
+  for (const auto& s : rk.samples) rk_max_at_samples = std::max(rk_max_at_samples, std::abs(s.gamma - s.excitation));
+  EXPECT_NEAR(sim_max_error, rk_max_at_samples, tolerance);
+  EXPECT_NEAR(sim_max_error, 6.0e-3, 0.05e-3);  // spec: 6.0e-3 (2 significant digits)
+}
+
+TEST(FlexibleFollowerSimulation, LoadStepsOpenTheContactAtTheDesignSpeed) {
+  // At 100° the functional load steps from +100 N (the cam pushes) to −230 N (it pulls the
+  // follower away): the follower mass, released by 330 N at once, overshoots the new static
+  // contact force F ≈ 108 N by ≈ 330 N · e^(−ζπ/√(1−ζ²)) ≈ 256 N, so the contact opens within
+  // half a natural period (20.7 ms, 3.7° at 30 rpm) of the step, at any speed. The rigid
+  // model (N ≥ 0 everywhere at 30 rpm) cannot see this.
+  const auto events = events_at(pi, press_flexible(), 1);
+  expect_well_formed(events);
+  ASSERT_GE(events.size(), 2u);
+  const double first = value(events[0], "angle_deg");
+  EXPECT_GT(first, 100.0);
+  EXPECT_LT(first, 100.0 + 3.7);
+  // Without the load steps the design speed is far from lift-off: no event at all.
+  EXPECT_TRUE(events_at(pi, press_flexible(1.0, false), 2).empty());
+}
+
+TEST(FlexibleFollowerSimulation, JumpsAboveTheKinetostaticLiftOffSpeed) {
+  const cam::PressCam press;
+  const auto kinetostatic = cam::kinetostatic_lift_off_speed(press.law(), press.follower);
+  const double speed = 1.3 * kinetostatic.speed_rad_s;  // the cam_jump scene
+  FlexibleFollowerBlock b(press_flexible());
+  const auto run = testing::drive_follower(b, testing::press_cam_shaft(speed), 3 * 2 * pi / speed,
+                                           tolerances(solve::Method::cvode_bdf, 1e-8, 1e-12));
+  expect_well_formed(run.events);
+  EXPECT_EQ(b.lift_off_count(), static_cast<long>((run.events.size() + 1) / 2));
+  // Besides the load steps (100°, 180°), the follower leaves the cam where the fall
+  // decelerates it harder than spring and preload can: before the 180° load step.
+  int inertia_jumps = 0;
+  for (const auto& e : run.events) {
+    std::cout << "  " << e.kind << " t=" << e.t;
+    for (const auto& [n, v] : e.values) std::cout << " " << n << "=" << v;
+    std::cout << "\n";
+    const double angle = value(e, "angle_deg");
+    if (e.kind == "lift_off" && angle > 140.0 && angle < 180.0) ++inertia_jumps;
+  }
+  EXPECT_GE(inertia_jumps, 3);  // one per revolution
+}
+
+TEST(FlexibleFollowerSimulation, LiftOffSpeedBesideTheKinetostaticPrediction) {
+  // With the load steps the flexible follower lifts off at any speed (above); the speed
+  // at which its inertia alone opens the contact is found with the loads left out (the
+  // rigid prediction, 158.9° in the fall, lies before the 180° load anyway).
+  const cam::PressCam press;
+  auto no_loads = press.follower;
+  no_loads.loads.clear();
+  const auto kinetostatic = cam::kinetostatic_lift_off_speed(press.law(), no_loads);
+  const auto params = press_flexible(1.0, false);
+  auto lifts_off = [&](double speed) { return !events_at(speed, params, 3).empty(); };
+  double low = 0.5 * kinetostatic.speed_rad_s, high = 1.5 * kinetostatic.speed_rad_s;
+  ASSERT_FALSE(lifts_off(low));
+  ASSERT_TRUE(lifts_off(high));
+  while (high - low > 1e-3 * kinetostatic.speed_rad_s) {
+    const double mid = 0.5 * (low + high);
+    (lifts_off(mid) ? high : low) = mid;
+  }
+  const auto events = events_at(high, params, 3);
+  std::cout << "lift-off speed: kinetostatic " << kinetostatic.speed_rad_s << " rad/s at "
+            << cam::rad_to_deg(kinetostatic.angle_rad) << " deg, flexible " << high << " rad/s at "
+            << value(events.front(), "angle_deg") << " deg\n";
+  // The cam_jump scene (1.3× the kinetostatic speed) must lie above the flexible one.
+  EXPECT_LT(high, 1.3 * kinetostatic.speed_rad_s);
 }
 
 TEST(FlexibleFollowerSimulation, Explore) {
-  for (double factor : {1e4})
-  for (double zeta : {0.08, 0.3, 1.0})
-   for (double rtol : {1e-6})
-    for (bool loads : {false, true})
+  for (double factor : {1.0, 1e2, 1e4, 1e6})
+   for (double atol : {1e-9, 0.0})
       for (auto method : {solve::Method::cvode_bdf, solve::Method::cvode_adams, solve::Method::arkode_erk}) {
-        auto p = press_flexible(factor, loads);
-        p.contact.contact_damping_n_s_per_m = follower::damping_for_ratio(zeta, p.contact.stiffness_n_per_m, 25.0);
+        auto p = press_flexible(factor, false);
         FlexibleFollowerBlock b(p);
-        auto o = tolerances(method, rtol, 1e-9 * rtol / 1e-6 / factor);
-        o.max_step = 5e-3;
+        auto o = tolerances(method, 1e-6, atol > 0 ? atol : 1e-9 / factor, 5e-3);
         const auto run = testing::drive_follower(b, testing::press_cam_shaft(pi), 2.0, o);
-        std::cout << "kf x" << factor << " loads " << loads << " zeta " << zeta << " rtol " << rtol << " method " << (method == solve::Method::cvode_bdf ? "BDF" : method == solve::Method::cvode_adams ? "Adams" : "ERK")
+        std::cout << "kf x" << factor << " atol " << o.atol << " method " << (method == solve::Method::cvode_bdf ? "BDF" : method == solve::Method::cvode_adams ? "Adams" : "ERK")
                   << ": steps " << run.stats.steps << " rhs " << run.stats.rhs_evals << " jac " << run.stats.jacobian_evals
                   << " etf " << run.stats.error_test_failures << " order " << run.stats.last_order << " events " << run.events.size() << "\n";
       }
