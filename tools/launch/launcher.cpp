@@ -5,10 +5,13 @@
 #include <atomic>
 #include <chrono>
 #include <csignal>
+#include <cstdlib>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <cmath>
+#include <limits>
 #include <map>
 #include <random>
 #include <sstream>
@@ -18,6 +21,7 @@
 #include "mechsim/config/scene.h"
 #include "mechsim/cosim/composer.h"
 #include "mechsim/cosim/output_log.h"
+#include "mechsim/cosim/pacer.h"
 #include "mechsim/cosim/scene_plan.h"
 #include "mechsim/transport/backends.h"
 #include "node_processes.h"
@@ -46,6 +50,15 @@ std::string hex_id(std::uint64_t id) {
   char buf[17];
   std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(id));
   return buf;
+}
+
+// A Fast DDS process killed mid-run leaves its shared-memory segments in /dev/shm.
+// `fastdds shm clean` (fastdds-tools) removes those whose owner is gone, and only those, so
+// concurrent runs keep theirs.
+void clean_fastdds_shared_memory() {
+  if (std::system("command -v fastdds >/dev/null 2>&1") != 0) return;
+  if (std::system("fastdds shm clean >/dev/null 2>&1") != 0)
+    std::fprintf(stderr, "mechsim: 'fastdds shm clean' failed; stale segments may remain in /dev/shm\n");
 }
 
 struct NodeWatch {
@@ -89,6 +102,7 @@ class Run {
   std::unique_ptr<transport::StatusReader> status_;
   NodeProcesses processes_;
   std::map<std::string, NodeWatch> watch_;
+  std::vector<std::string> warnings_;
   bool tty_ = false;
 };
 
@@ -146,8 +160,20 @@ void Run::print_progress(double since_start, bool final_line) {
   const double t = scene_.time.start + static_cast<double>(step) * scene_.time.step;
   const double rate = since_start > 0 ? static_cast<double>(step) / since_start : 0.0;
   const double rtf = since_start > 0 ? (t - scene_.time.start) / since_start : 0.0;
-  std::fprintf(stderr, "\r[%s] t = %.4f / %.4f s  step %llu / %ld  %.0f steps/s  rtf %.2f   %s", scene_.name.c_str(), t,
-               scene_.time.end, static_cast<unsigned long long>(step), scene_.time.steps(), rate, rtf,
+  std::string realtime;
+  if (scene_.mode == "realtime") {
+    long long missed = 0;
+    double late = 0;
+    for (const auto& [name, w] : watch_) {
+      missed += w.last.missed_deadlines;
+      late = std::max(late, w.last.lateness_max);
+    }
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "  missed %lld  max late %.2f ms", missed, late * 1e3);
+    realtime = buf;
+  }
+  std::fprintf(stderr, "\r[%s] t = %.4f / %.4f s  step %llu / %ld  %.0f steps/s  rtf %.2f%s   %s", scene_.name.c_str(), t,
+               scene_.time.end, static_cast<unsigned long long>(step), scene_.time.steps(), rate, rtf, realtime.c_str(),
                final_line ? "\n" : "");
   std::fflush(stderr);
 }
@@ -169,6 +195,11 @@ RunOutcome Run::run_nodes() {
       if (s->header.run_id != run_id_) continue;
       auto it = watch_.find(s->node);
       if (it == watch_.end()) continue;
+      if (s->message.rfind("cannot keep up", 0) == 0 && it->second.last.message != s->message) {
+        if (tty_ && opt_.progress) std::fprintf(stderr, "\n");
+        std::fprintf(stderr, "mechsim: warning: node '%s' %s\n", s->node.c_str(), s->message.c_str());
+        warnings_.push_back("node '" + s->node + "' " + s->message);
+      }
       it->second.last = *s;
       it->second.seen = true;
       it->second.last_seen = Clock::now();
@@ -214,8 +245,12 @@ RunOutcome Run::run_nodes() {
   }
 
   // 2. Start, then watch until every node is done.
+  const bool realtime = scene_.mode == "realtime";
   transport::ControlMessage start{run_id_, transport::ControlCommand::start, scene_.time.end, scene_.time.step,
-                                  transport::RunMode::lockstep, scene_.rtf};
+                                  realtime ? transport::RunMode::realtime : transport::RunMode::lockstep, scene_.rtf};
+  // Real-time pacing counts from the start command: step 0 is due a moment after it is
+  // sent, so that every node has it by then.
+  if (realtime) start.start_wall_ns = cosim::Pacer::now_ns() + 50'000'000;
   control_->write(start);
   const auto started = Clock::now();
   for (auto& [name, w] : watch_) w.last_seen = started;
@@ -268,6 +303,9 @@ RunOutcome Run::run_nodes() {
     abort.command = transport::ControlCommand::abort;
     control_->write(abort);
     processes_.stop_all(2.0);
+    bool fastdds = scene_.vendor == "fastdds";
+    for (const auto& p : scene_.participants) fastdds = fastdds || p.vendor == "fastdds";
+    if (fastdds) clean_fastdds_shared_memory();
   }
   return out;
 }
@@ -281,6 +319,7 @@ json Run::summarise(const RunOutcome& out) {
   s["run_id"] = hex_id(run_id_);
   s["run_dir"] = run_dir_;
   s["domain_id"] = domain_;
+  s["dds_vendor"] = scene_.vendor;  // the launcher's own participant
   s["mode"] = scene_.mode;
   s["status"] = out.ok ? "ok" : "failed";
   s["macro_step_s"] = scene_.time.step;
@@ -322,6 +361,33 @@ json Run::summarise(const RunOutcome& out) {
     }
   }
   s["events"] = events;
+  if (scene_.mode == "realtime") {
+    // Lateness and deadline figures per node (from <node>.realtime.json) and for the run.
+    json per_node = json::object();
+    long long missed = 0;
+    double p99 = 0, worst = 0, paced = 0, rtf = std::numeric_limits<double>::infinity();
+    for (auto& p : processes_.processes()) {
+      std::ifstream in(run_dir_ + "/" + p.name + ".realtime.json");
+      json f = json::parse(in, nullptr, false);
+      if (f.is_discarded()) continue;
+      per_node[p.name] = f;
+      missed += f.value("missed_deadlines", 0LL);
+      p99 = std::max(p99, f.value("lateness_p99_s", 0.0));
+      worst = std::max(worst, f.value("lateness_max_s", 0.0));
+      rtf = std::min(rtf, f.value("rtf_achieved", 0.0));
+      paced = std::max(paced, f.value("paced_wall_time_s", 0.0));
+    }
+    s["realtime"] = {{"rtf_requested", scene_.rtf},
+                     {"warnings", warnings_},
+                     {"on_overrun", scene_.realtime.on_overrun},
+                     {"wait", scene_.realtime.spin_wait ? "spin" : "blocking"},
+                     {"missed_deadlines", missed},
+                     {"lateness_p99_s", p99},
+                     {"lateness_max_s", worst},
+                     {"rtf_achieved", std::isfinite(rtf) ? rtf : 0.0},
+                     {"paced_wall_time_s", paced},
+                     {"nodes", per_node}};
+  }
   return s;
 }
 
@@ -426,6 +492,13 @@ int Run::execute() {
                   e["max_abs_error"].get<double>(), e["unit"].get<std::string>().c_str(),
                   100 * e["max_rel_error"].get<double>(), e["rms_abs_error"].get<double>());
     print_figures(summary["report"]);
+    if (summary.contains("realtime")) {
+      const json& r = summary["realtime"];
+      std::printf("  real time (rtf %g, %s wait): %lld missed deadlines, lateness p99 %.3f ms, max %.3f ms, achieved rtf %.3f\n",
+                  r["rtf_requested"].get<double>(), r["wait"].get<std::string>().c_str(), r["missed_deadlines"].get<long long>(),
+                  1e3 * r["lateness_p99_s"].get<double>(), 1e3 * r["lateness_max_s"].get<double>(),
+                  r["rtf_achieved"].get<double>());
+    }
     if (!summary["events"].empty()) {
       std::map<std::string, int> counts;
       for (const auto& e : summary["events"]) ++counts[e["node"].get<std::string>() + "." + e.value("kind", "?")];
@@ -444,6 +517,16 @@ int Run::execute() {
 
 }  // namespace
 
+std::vector<std::string> dds_layout_overrides(const std::vector<std::string>& participants, const std::string& layout) {
+  if (layout != "cyclone" && layout != "fastdds" && layout != "mixed")
+    throw std::invalid_argument("DDS layout: expected cyclone, fastdds or mixed, got '" + layout + "'");
+  const bool mixed = layout == "mixed";
+  std::vector<std::string> out{"dds.vendor=" + (mixed ? std::string("cyclone") : layout)};
+  for (std::size_t i = 0; i < participants.size(); ++i)
+    out.push_back("participants." + participants[i] + ".dds=" + (mixed ? (i % 2 == 0 ? "fastdds" : "cyclone") : layout));
+  return out;
+}
+
 int launch(const LaunchOptions& options) {
   std::signal(SIGINT, on_interrupt);
   std::signal(SIGTERM, on_interrupt);
@@ -451,6 +534,12 @@ int launch(const LaunchOptions& options) {
   std::optional<cosim::ScenePlan> plan;
   try {
     scene = config::load_scene(options.scene_path, options.overrides);
+    if (!options.dds_layout.empty()) {
+      std::vector<std::string> names, overrides = options.overrides;
+      for (const auto& p : scene.participants) names.push_back(p.name);
+      for (auto& o : dds_layout_overrides(names, options.dds_layout)) overrides.push_back(std::move(o));
+      scene = config::load_scene(options.scene_path, overrides);
+    }
     plan.emplace(cosim::ScenePlan::build(scene));
     auto vendors = transport::available_vendors();
     for (const auto& p : scene.participants)

@@ -18,7 +18,14 @@ struct LaunchOptions {
   bool progress = true;                // progress line on a terminal
   bool plots = true;
   double ready_timeout_s = 30.0;       // from process start to all nodes ready
+  std::string dds_layout;              // "" (the scene's vendors), "cyclone", "fastdds" or "mixed"
 };
+
+// The scene overrides that put the launcher and every participant on one DDS vendor
+// ("cyclone", "fastdds"), or alternate them ("mixed": the launcher on cyclone, the
+// participants fastdds, cyclone, fastdds, ... in scene order). Throws std::invalid_argument
+// for another layout.
+std::vector<std::string> dds_layout_overrides(const std::vector<std::string>& participants, const std::string& layout);
 
 // Returns the process exit code: 0 ok, 1 run failed, 2 bad scene, 130 interrupted.
 int launch(const LaunchOptions& options);

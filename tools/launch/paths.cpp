@@ -30,10 +30,23 @@ std::string project_dir() {
 }
 
 void configure_dds_environment() {
-  if (std::getenv("CYCLONEDDS_URI")) return;  // the user's own configuration wins
-  fs::path xml = fs::path(project_dir()) / "config/dds/cyclonedds-loopback.xml";
-  if (!fs::exists(xml)) throw std::runtime_error(xml.string() + " is missing (set MECHSIM_HOME to the project folder)");
-  ::setenv("CYCLONEDDS_URI", ("file://" + xml.string()).c_str(), 1);
+  auto config_file = [](const std::string& name) {
+    fs::path xml = fs::path(project_dir()) / "config/dds" / name;
+    if (!fs::exists(xml)) throw std::runtime_error(xml.string() + " is missing (set MECHSIM_HOME to the project folder)");
+    return xml.string();
+  };
+  // The user's own configuration wins, vendor by vendor.
+  if (!std::getenv("CYCLONEDDS_URI"))
+    ::setenv("CYCLONEDDS_URI", ("file://" + config_file("cyclonedds-loopback.xml")).c_str(), 1);
+  if (!std::getenv("FASTRTPS_DEFAULT_PROFILES_FILE")) {
+    // Fast DDS 2.9 reads its transports only from an XML profile: shared memory (default)
+    // or UDP loopback only, chosen by MECHSIM_FASTDDS_TRANSPORT.
+    const char* env = std::getenv("MECHSIM_FASTDDS_TRANSPORT");
+    const std::string transport = env && *env ? env : "shm";
+    if (transport != "shm" && transport != "udp")
+      throw std::runtime_error("MECHSIM_FASTDDS_TRANSPORT: expected 'shm' or 'udp', got '" + transport + "'");
+    ::setenv("FASTRTPS_DEFAULT_PROFILES_FILE", config_file("fastdds-" + transport + ".xml").c_str(), 1);
+  }
 }
 
 }  // namespace mechsim::launch

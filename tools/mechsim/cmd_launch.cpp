@@ -13,6 +13,10 @@ void add_launch_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--runs-dir", opt->runs_dir, "parent folder of the run folders")->capture_default_str();
   cmd->add_flag("!--no-plot", opt->plots, "skip the PNG plot");
   cmd->add_flag("!--no-progress", opt->progress, "no progress line");
+  cmd->add_option("--dds", opt->dds_layout,
+                  "DDS vendors of this run, overriding the scene: cyclone, fastdds (all participants and the "
+                  "launcher on one vendor) or mixed (alternating, the launcher on cyclone)")
+      ->check(CLI::IsMember({"cyclone", "fastdds", "mixed"}));
   cmd->callback([args, opt, &exit_code] {
     opt->scene_path = args->scene;
     opt->overrides = args->overrides();

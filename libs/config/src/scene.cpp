@@ -74,7 +74,7 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
                                                           o.find('=') == std::string::npos ? "" : o.substr(o.find('=') + 1));
   const ConfigNode& root = scene.root;
   if (!root.is_map()) root.fail("expected a scene: a map with keys scene, time, participants, ...");
-  root.allow_only({"scene", "description", "time", "mode", "rtf", "dds", "hang_timeout",
+  root.allow_only({"scene", "description", "time", "mode", "rtf", "realtime", "dds", "hang_timeout",
                    "participants", "connections", "compare", "report", "record", "design"});
 
   scene.name = root.string("scene");
@@ -86,8 +86,12 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
     scene.rtf = root.number("rtf");
     if (!(scene.rtf > 0)) root.child("rtf").fail("expected a real-time factor > 0");
   }
-  if (scene.mode == "realtime")
-    root.child("mode").fail("expected 'lockstep': real-time pacing is not implemented yet");
+  if (auto rt = root.optional_child("realtime")) {
+    rt->allow_only({"on_overrun", "wait", "spin_limit"});
+    scene.realtime.on_overrun = rt->choice_or("on_overrun", {"continue", "abort"}, "continue");
+    scene.realtime.spin_wait = rt->choice_or("wait", {"blocking", "spin"}, "blocking") == "spin";
+    scene.realtime.spin_limit = rt->positive_quantity_or("spin_limit", dim::time, scene.realtime.spin_limit);
+  }
   if (root.has("hang_timeout")) scene.hang_timeout = root.positive_quantity("hang_timeout", dim::time);
   if (auto dds = root.optional_child("dds")) {
     dds->allow_only({"vendor", "domain"});

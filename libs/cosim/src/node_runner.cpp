@@ -4,11 +4,15 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <optional>
+
+#include <sched.h>
 #include <stdexcept>
 
 #include "mechsim/cosim/divergence_guard.h"
 #include "mechsim/cosim/node_stepper.h"
 #include "mechsim/cosim/output_log.h"
+#include "mechsim/cosim/pacer.h"
 
 namespace mechsim::cosim {
 
@@ -116,6 +120,7 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
       return true;
     };
     bool ready = false, started = false;
+    transport::ControlMessage start_message;
     const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
                                              std::chrono::duration<double>(options.start_timeout_s));
     while (!started) {
@@ -128,7 +133,10 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
       while (auto c = control->take()) {
         if (c->run_id != options.run_id) continue;  // a stale command of another run
         if (c->command == transport::ControlCommand::abort || c->command == transport::ControlCommand::stop) return 3;
-        if (c->command == transport::ControlCommand::start) started = ready;
+        if (c->command == transport::ControlCommand::start) {
+          started = ready;
+          start_message = *c;
+        }
         if (c->command == transport::ControlCommand::start && !ready)
           throw std::runtime_error("start command before this node was matched with its partners");
       }
@@ -156,19 +164,65 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
     std::vector<std::string> output_names;
     for (const auto& o : node.block->outputs()) output_names.push_back(o.name);
     DivergenceGuard guard(output_names);
+    // Real-time mode: publication paced to the wall clock from the start command's t_start.
+    std::optional<Pacer> pacer;
+    const config::RealtimeSpec& rt = scene.realtime;
+    if (scene.mode == "realtime") {
+      if (start_message.start_wall_ns == 0) throw std::runtime_error("realtime mode without a start time in the start command");
+      pacer.emplace(start_message.start_wall_ns, scene.time.start, scene.time.step, scene.rtf);
+    }
+    bool keep_up_checked = false;
+    auto pace = [&](std::uint64_t k) {
+      const double late = pacer->published(k);
+      const double step_wall = scene.time.step / scene.rtf;
+      if (rt.on_overrun == "abort" && late > step_wall) {
+        char buf[200];
+        std::snprintf(buf, sizeof buf, "fell behind its deadline by %.3f ms at step %llu (t = %.6g s; a step is %.3f ms of wall time)",
+                      late * 1e3, static_cast<unsigned long long>(k), stepper.time(), step_wall * 1e3);
+        throw std::runtime_error(buf);
+      }
+      // Within the first second: a run that cannot keep up at all is told so, with the
+      // rate it reaches (it runs flat out while it is late).
+      if (!keep_up_checked && pacer->elapsed() > 1.0) {
+        keep_up_checked = true;
+        const RealtimeFigures f = pacer->running_figures();
+        if (f.missed_deadlines * 2 > f.publications) {
+          char buf[256];
+          std::snprintf(buf, sizeof buf, "cannot keep up with rtf %g: missed %ld of %ld deadlines in the first second; "
+                        "measured maximum rtf %.3g (%.0f steps/s)", scene.rtf, f.missed_deadlines, f.publications,
+                        f.rtf_achieved, f.rtf_achieved / scene.time.step);
+          if (rt.on_overrun == "abort") throw std::runtime_error(buf);
+          std::printf("warning: %s\n", buf);
+          beat.status().message = buf;
+        }
+      }
+    };
     auto publish = [&] {
       if (auto why = guard.check(stepper.outputs()))
         throw std::runtime_error("diverged at step " + std::to_string(stepper.step()) + " (t = " +
                                  std::to_string(stepper.time()) + " s): " + *why);
       header.step = stepper.step();
       header.t = stepper.time();
+      if (pacer) pacer->wait_for_deadline(header.step);
       writer->write(header, values);
+      if (pacer) pace(header.step);
       if (log) log->append(header.t, stepper.outputs());
       beat.status().header.step = header.step;
       beat.status().header.t = header.t;
     };
 
     bool initialised = false;
+    // Low-latency wait: poll with sched_yield for a bounded time before blocking (waking a
+    // blocked thread dominates a step's cost on these machines; the price is a busy core).
+    auto spin_until_ready = [&](double limit_s) {
+      const auto until = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(limit_s));
+      while (Clock::now() < until) {
+        drain();
+        if (initialised ? stepper.can_step() : stepper.can_initialise()) return true;
+        sched_yield();
+      }
+      return false;
+    };
     for (;;) {
       drain();
       if (!initialised && stepper.can_initialise()) {
@@ -188,10 +242,28 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
       if (stepper.finished()) break;
       if (stop_requested() || check_control()) return 3;
       copy_stats(stepper.solver_stats(), beat.status());
+      if (pacer) {
+        const RealtimeFigures f = pacer->running_figures();
+        beat.status().lateness_max = f.lateness_max;
+        beat.status().missed_deadlines = f.missed_deadlines;
+        beat.status().rtf_window = f.rtf_window;
+      }
       beat.tick();
+      if (rt.spin_wait && spin_until_ready(rt.spin_limit)) continue;
       participant.wait(std::min(beat.until_next(), std::chrono::nanoseconds(50'000'000)));
     }
     if (log) log->close();
+    if (pacer && !options.run_dir.empty()) {
+      const RealtimeFigures f = pacer->figures();
+      if (std::FILE* out = std::fopen((options.run_dir + "/" + node_name + ".realtime.json").c_str(), "w")) {
+        std::fprintf(out,
+                     "{\"publications\": %ld, \"missed_deadlines\": %ld, \"lateness_median_s\": %.9g, "
+                     "\"lateness_p99_s\": %.9g, \"lateness_max_s\": %.9g, \"rtf_achieved\": %.6g, \"rtf_window\": %.6g, \"paced_wall_time_s\": %.9g}\n",
+                     f.publications, f.missed_deadlines, f.lateness_median, f.lateness_p99, f.lateness_max, f.rtf_achieved,
+                     f.rtf_window, f.paced_wall_time);
+        std::fclose(out);
+      }
+    }
     writer->flush(std::chrono::seconds(10));
     copy_stats(stepper.solver_stats(), beat.status());
     beat.set_state(transport::NodeState::done);

@@ -5,6 +5,9 @@
 #ifdef MECHSIM_HAVE_CYCLONEDDS
 #include "cyclone/cyclone_participant.h"
 #endif
+#ifdef MECHSIM_HAVE_FASTDDS
+#include "fastdds/fastdds_participant.h"
+#endif
 
 namespace mechsim::transport {
 
@@ -13,6 +16,9 @@ std::vector<std::string> available_vendors() {
 #ifdef MECHSIM_HAVE_CYCLONEDDS
   v.push_back("cyclone");
 #endif
+#ifdef MECHSIM_HAVE_FASTDDS
+  v.push_back("fastdds");
+#endif
   return v;
 }
 
@@ -20,8 +26,9 @@ std::unique_ptr<Participant> create_participant(const std::string& vendor, int d
 #ifdef MECHSIM_HAVE_CYCLONEDDS
   if (vendor == "cyclone") return std::make_unique<cyclone::CycloneParticipant>(domain_id);
 #endif
-  if (vendor == "fastdds")
-    throw std::runtime_error("DDS vendor 'fastdds' is not available in this build (the Fast DDS backend is not implemented yet)");
+#ifdef MECHSIM_HAVE_FASTDDS
+  if (vendor == "fastdds") return std::make_unique<fastdds::FastParticipant>(domain_id);
+#endif
   throw std::runtime_error("DDS vendor '" + vendor + "' is not compiled into this build");
 }
 

@@ -54,8 +54,6 @@ std::vector<BlockEvent> events_at(double speed, const FlexibleFollowerParams& p,
       .events;
 }
 
-double wrapped_deg(double rad) { return std::fmod(cam::rad_to_deg(rad), 360.0); }
-
 double value(const BlockEvent& e, const char* name) {
   for (const auto& [n, v] : e.values)
     if (n == name) return v;
@@ -83,11 +81,14 @@ TEST(FlexibleFollowerSimulation, MultiRiseAgreesWithTheVibrationAnalysis) {
   // with γ = z/S_max, τ = t/T. Same start (γ = θ(0) = 0 at rest), so the two agree at every
   // instant of all 20 cycles, not only in the periodic steady state.
   const cam::MotionLaw law = cam::PressCam{}.law();
-  const double kf = report_stiffness(), f0 = 125.0, s_max = 0.025, period = 2.0;
+  // λ' = 48.24 as the spec prints it (9.38 · 360/70 up to rounding), and the k_f that
+  // makes exactly λ' natural periods per cycle: m (2πλ'/T)² = 574.19 N/mm.
+  const double lambda_prime = 48.24, f0 = 125.0, s_max = 0.025, period = 2.0;
+  const double kf = 25.0 * std::pow(2 * pi * lambda_prime / period, 2);
+  ASSERT_NEAR(kf, report_stiffness(), 1e-9 * kf);
   FlexibleFollowerParams p;
   p.follower = {25.0, {0.0, f0}, {}};
   p.contact = {kf, 0.0, follower::damping_for_ratio(0.08, kf, 25.0)};
-  const double lambda_prime = cam::multi_rise_lambda(9.38, cam::deg_to_rad(70.0));
   const int cycles = 20;
   const auto rk = cam::multi_rise(law, lambda_prime, 0.08, cycles, 200);
   const auto rk_fine = cam::multi_rise(law, lambda_prime, 0.08, cycles, 400);
@@ -120,20 +121,20 @@ TEST(FlexibleFollowerSimulation, MultiRiseAgreesWithTheVibrationAnalysis) {
   double sim_max_error = 0.0;
   const auto sim = simulate(1e-10, rk, &sim_max_error);
   const auto sim_tight = simulate(1e-12, rk, nullptr);
-  const auto sim_on_fine = simulate(1e-10, rk_fine, nullptr);
   const double discrepancy = max_difference(sim, rk_gamma(rk));
-  // Error estimates of both sides: CVODE against itself at 100× tighter tolerance, RK4
-  // against itself at half the step (both are converging methods, so the difference to the
-  // refined run bounds the error of the coarse one up to a factor near 1).
+  // Error estimates of both sides: CVODE against itself at 100× tighter tolerance; RK4
+  // (4th order) from halving its step, e ≈ (16/15)|γ_h − γ_h/2|. Halving the step keeps
+  // the sample grid (every 13th step of 9648 per cycle, every 26th of 19296).
+  ASSERT_EQ(rk.samples.size(), rk_fine.samples.size());
+  for (std::size_t i = 0; i < rk.samples.size(); ++i) ASSERT_EQ(rk.samples[i].tau, rk_fine.samples[i].tau);
   const double cvode_error = max_difference(sim, sim_tight);
-  const double rk_error = std::abs(max_difference(sim_on_fine, rk_gamma(rk_fine)) - discrepancy) + 
-                          std::abs(rk.max_error - rk_fine.max_error);
+  const double rk_error = 16.0 / 15.0 * max_difference(rk_gamma(rk), rk_gamma(rk_fine));
   std::cout << "multi-rise, cycle " << cycles << ": max |γ−θ| RK4 " << rk.max_error << ", CVODE (at the RK4 samples) "
             << sim_max_error << "; max |γ_CVODE − γ_RK4| " << discrepancy << " (CVODE error est. " << cvode_error
             << ", RK4 error est. " << rk_error << ")\n";
   // The two agree within their own estimated errors (×2 for the estimates' own accuracy),
-  // with a floor of 1e-9 (25 pm of follower motion) for rounding over ~1e6 steps.
-  const double tolerance = 2.0 * (cvode_error + rk_error) + 1e-9;
+  // with a floor of 1e-10 (2.5 pm of follower motion) for rounding over ~1e5 steps.
+  const double tolerance = 2.0 * (cvode_error + rk_error) + 1e-10;
   EXPECT_LT(discrepancy, tolerance);
   // And so does the figure the report quotes (max |γ − θ| ≈ 6.0e-3, sampled at the same τ).
   double rk_max_at_samples = 0.0;
@@ -167,17 +168,19 @@ TEST(FlexibleFollowerSimulation, JumpsAboveTheKinetostaticLiftOffSpeed) {
                                            tolerances(solve::Method::cvode_bdf, 1e-8, 1e-12));
   expect_well_formed(run.events);
   EXPECT_EQ(b.lift_off_count(), static_cast<long>((run.events.size() + 1) / 2));
-  // Besides the load steps (100°, 180°), the follower leaves the cam where the fall
-  // decelerates it harder than spring and preload can: before the 180° load step.
-  int inertia_jumps = 0;
+  // The follower flies in every revolution, and at this speed also where no load steps:
+  // in the fall before the 180° load, where the rigid model predicts lift-off (158.9°).
+  const double revolution = 2 * pi / speed;
+  std::vector<int> per_revolution(3, 0);
+  int in_fall = 0;
   for (const auto& e : run.events) {
-    std::cout << "  " << e.kind << " t=" << e.t;
-    for (const auto& [n, v] : e.values) std::cout << " " << n << "=" << v;
-    std::cout << "\n";
+    if (e.kind != "lift_off") continue;
+    ++per_revolution[std::min(2, static_cast<int>(e.t / revolution))];
     const double angle = value(e, "angle_deg");
-    if (e.kind == "lift_off" && angle > 140.0 && angle < 180.0) ++inertia_jumps;
+    if (angle > 140.0 && angle < 180.0) ++in_fall;
   }
-  EXPECT_GE(inertia_jumps, 3);  // one per revolution
+  for (int n : per_revolution) EXPECT_GE(n, 1);
+  EXPECT_GE(in_fall, 1);
 }
 
 TEST(FlexibleFollowerSimulation, LiftOffSpeedBesideTheKinetostaticPrediction) {
@@ -193,7 +196,7 @@ TEST(FlexibleFollowerSimulation, LiftOffSpeedBesideTheKinetostaticPrediction) {
   double low = 0.5 * kinetostatic.speed_rad_s, high = 1.5 * kinetostatic.speed_rad_s;
   ASSERT_FALSE(lifts_off(low));
   ASSERT_TRUE(lifts_off(high));
-  while (high - low > 1e-3 * kinetostatic.speed_rad_s) {
+  while (high - low > 1e-3 * kinetostatic.speed_rad_s) {  // 0.1 %: far finer than the gap to 1.3×
     const double mid = 0.5 * (low + high);
     (lifts_off(mid) ? high : low) = mid;
   }
@@ -205,18 +208,40 @@ TEST(FlexibleFollowerSimulation, LiftOffSpeedBesideTheKinetostaticPrediction) {
   EXPECT_LT(high, 1.3 * kinetostatic.speed_rad_s);
 }
 
-TEST(FlexibleFollowerSimulation, Explore) {
-  for (double factor : {1.0, 1e2, 1e4, 1e6})
-   for (double atol : {1e-9, 0.0})
-      for (auto method : {solve::Method::cvode_bdf, solve::Method::cvode_adams, solve::Method::arkode_erk}) {
-        auto p = press_flexible(factor, false);
-        FlexibleFollowerBlock b(p);
-        auto o = tolerances(method, 1e-6, atol > 0 ? atol : 1e-9 / factor, 5e-3);
-        const auto run = testing::drive_follower(b, testing::press_cam_shaft(pi), 2.0, o);
-        std::cout << "kf x" << factor << " atol " << o.atol << " method " << (method == solve::Method::cvode_bdf ? "BDF" : method == solve::Method::cvode_adams ? "Adams" : "ERK")
-                  << ": steps " << run.stats.steps << " rhs " << run.stats.rhs_evals << " jac " << run.stats.jacobian_evals
-                  << " etf " << run.stats.error_test_failures << " order " << run.stats.last_order << " events " << run.events.size() << "\n";
-      }
+TEST(FlexibleFollowerSimulation, StiffContactKeepsBdfBounded) {
+  // The follower stiffness ×1e4 and ×1e6 (ω_n = 15 and 152 krad/s against a cam revolution of
+  // 2 s), ζ = 0.08 in the contact, loads left out (their steps would make every method
+  // resolve the same bounces). The absolute tolerance scales with 1/k_f so that the contact
+  // force k_f δ is resolved equally well in every case (1e-9 m on the report's k_f: 0.6 mN).
+  // An explicit method is held to h ≲ R/ω_n by stability (R the reach of its stability
+  // region along the imaginary axis, ≤ 4 for ARKODE's default 4th-order ERK): its step count
+  // grows ∝ ω_n ∝ √k_f. BDF's must not.
+  struct Count {
+    long bdf, adams, erk;
+  };
+  auto count = [](double factor) {
+    auto steps = [&](solve::Method method) {
+      FlexibleFollowerBlock b(press_flexible(factor, false));
+      return testing::drive_follower(b, testing::press_cam_shaft(pi), 2.0, tolerances(method, 1e-6, 1e-9 / factor, 5e-3))
+          .stats.steps;
+    };
+    return Count{steps(solve::Method::cvode_bdf), steps(solve::Method::cvode_adams), steps(solve::Method::arkode_erk)};
+  };
+  const Count nominal = count(1.0), stiff = count(1e4), stiffer = count(1e6);
+  for (const auto& [name, c] : {std::pair{"k_f x1", nominal}, std::pair{"k_f x1e4", stiff}, std::pair{"k_f x1e6", stiffer}})
+    std::cout << name << ": steps per revolution BDF " << c.bdf << ", Adams " << c.adams << ", ERK " << c.erk << "\n";
+  const double omega_n = std::sqrt(1e6 * report_stiffness() / 25.0);
+  EXPECT_GT(stiffer.erk, 2.0 * omega_n / 4.0);  // the explicit stability limit is real here
+  // BDF: 100× stiffer costs less than 50 % more steps (the stiff mode is damped, not
+  // followed), and stays far below the explicit method.
+  EXPECT_LT(stiffer.bdf, 1.5 * stiff.bdf);
+  EXPECT_LT(5 * stiffer.bdf, stiffer.erk);
+  EXPECT_LT(stiff.bdf, stiff.erk);
+  // CVODE's Adams runs with the same Newton iteration, and its orders 1–2 are A-stable:
+  // at ×1e4 it keeps up with BDF (whose orders 3–5 are unstable for a mode this lightly
+  // damped, 85° from the negative real axis, so both work at order 1–2). Its higher orders
+  // are not stiffly stable, and at ×1e6 it falls far behind.
+  EXPECT_GT(stiffer.adams, 4 * stiffer.bdf);
 }
 
 }  // namespace

@@ -55,19 +55,19 @@ FlexibleFollowerBlock::FlexibleFollowerBlock(FlexibleFollowerParams params)
   accel.push_back(angle);  // F_func(θ)
   std::vector<int> normal = force;
   normal.push_back(alpha);
-  declare_output("position", "m");
+  declare_output("position", "m", {lift});  // y = S − δ
   declare_output("velocity", "m/s");
   declare_output("acceleration", "m/s^2", accel);
   declare_output("contact_force", "N", normal);
   declare_output("contact", "1");
   declare_output("drive_torque", "N*m", force);
-  declare_output("spring_force", "N");
+  declare_output("spring_force", "N", {lift});
   declare_output("load_force", "N", {angle});
   declare_output("inertia_force", "N", accel);
   declare_output("drive_torque_rest", "N*m", force);
   declare_output("reflected_inertia", "kg*m^2");
   declare_output("lift_off_count", "1");
-  declare_output("deflection", "m", {lift});
+  declare_output("deflection", "m");  // the state itself
   declare_state("deflection", "m");
   declare_state("velocity", "m/s");
 }

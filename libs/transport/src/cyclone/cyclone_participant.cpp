@@ -151,6 +151,7 @@ class CycloneControlWriter final : public ControlWriter {
     c.macro_step = m.macro_step;
     c.mode = static_cast<int32_t>(m.mode);
     c.rtf = m.rtf;
+    c.start_wall_ns = m.start_wall_ns;
     dds_return_t rc = dds_write(writer_, &c);
     if (rc != DDS_RETCODE_OK) fail("write control", rc);
   }
@@ -168,7 +169,7 @@ class CycloneControlReader final : public ControlReader {
     mechsim_msg_Control c{};
     if (!take_one(reader_, &c)) return std::nullopt;
     return ControlMessage{c.header.run_id, static_cast<ControlCommand>(c.command), c.end_time,
-                          c.macro_step, static_cast<RunMode>(c.mode), c.rtf};
+                          c.macro_step, static_cast<RunMode>(c.mode), c.rtf, c.start_wall_ns};
   }
 
  private:
@@ -192,6 +193,10 @@ class CycloneStatusWriter final : public StatusWriter {
     s.roots_found = m.roots_found;
     s.last_step_size = m.last_step_size;
     s.last_order = m.last_order;
+    s.lateness_max = m.lateness_max;
+    s.lateness_p99 = m.lateness_p99;
+    s.missed_deadlines = m.missed_deadlines;
+    s.rtf_window = m.rtf_window;
     copy_bounded(s.message, sizeof s.message, m.message);
     dds_write(writer_, &s);  // best effort: a lost heartbeat is harmless
   }
@@ -219,6 +224,10 @@ class CycloneStatusReader final : public StatusReader {
     m.roots_found = s.roots_found;
     m.last_step_size = s.last_step_size;
     m.last_order = s.last_order;
+    m.lateness_max = s.lateness_max;
+    m.lateness_p99 = s.lateness_p99;
+    m.missed_deadlines = s.missed_deadlines;
+    m.rtf_window = s.rtf_window;
     m.message = s.message;
     return m;
   }

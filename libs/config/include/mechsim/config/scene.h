@@ -72,6 +72,13 @@ struct ReportSpec {
   double band = 0.02;           // step_response: settling band, fraction of the step
 };
 
+// Real-time mode (`mode: realtime`): pacing and what to do when a node falls behind.
+struct RealtimeSpec {
+  std::string on_overrun = "continue";  // continue (count misses) | abort (stop the run)
+  bool spin_wait = false;               // low-latency wait: spin with sched_yield before blocking
+  double spin_limit = 200e-6;           // s of spinning per wait
+};
+
 struct Scene {
   std::string file;         // path it was loaded from
   std::string name;
@@ -79,6 +86,7 @@ struct Scene {
   TimeSpec time;
   std::string mode = "lockstep";  // lockstep | realtime
   double rtf = 1.0;
+  RealtimeSpec realtime;
   std::string vendor = "cyclone";  // scene-wide default
   std::optional<int> domain_id;    // default: the launcher picks a free one
   double hang_timeout = 5.0;       // s without a status from a node => hung

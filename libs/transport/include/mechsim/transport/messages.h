@@ -23,6 +23,7 @@ struct ControlMessage {
   double macro_step = 0.0;
   RunMode mode = RunMode::lockstep;
   double rtf = 1.0;
+  std::int64_t start_wall_ns = 0;  // realtime mode: Unix time of step 0 (ns)
 };
 
 enum class NodeState : std::int32_t { starting = 0, ready = 1, running = 2, done = 3, failed = 4 };
@@ -40,6 +41,10 @@ struct StatusMessage {
   std::int64_t roots_found = 0;
   double last_step_size = 0.0;
   std::int32_t last_order = 0;
+  double lateness_max = 0.0;   // realtime mode, s
+  double lateness_p99 = 0.0;   // s
+  std::int64_t missed_deadlines = 0;
+  double rtf_window = 0.0;     // achieved real-time factor over the last second
   std::string message;  // last error (at most 256 characters on the wire)
 };
 

@@ -15,6 +15,13 @@
 //             h = F: the compressed contact pushes again)
 // With c_f = 0 both reduce to S − y crossing zero.
 // Each switch is reported through take_event_log() ("lift_off", "landing").
+//
+// The states are the deflection δ = S − y and ẏ, not y: the contact force k_f δ is then a
+// state the solver's error control sees, however stiff the follower. With y as the state
+// the error allowed on y (rtol·|y|, ~25 nm at rtol 1e-6 on a 25 mm lift) exceeds the whole
+// deflection of a stiff contact (~50 nm at 1e4× the report's k_f), and the force becomes
+// noise. δ̇ = Ṡ − ẏ with Ṡ = S' ω from the cam.
+//
 // Unlike the rigid follower this one reflects no inertia onto the shaft: its drive torque
 // F S' follows from its own state, so a dynamic cam shaft sees no algebraic loop.
 #pragma once
@@ -50,7 +57,7 @@ double static_position(const FlexibleFollowerParams& params, double lift_m);
 // non-positive mass or contact stiffness, or negative damping.
 void validate(const FlexibleFollowerParams& params);
 
-// States: position y (m), velocity ẏ (m/s). Inputs as the rigid FollowerBlock (angle,
+// States: deflection δ = S − y (m), velocity ẏ (m/s). Inputs as the rigid FollowerBlock (angle,
 // speed, lift, lift_d1, pressure_angle required; lift_d2 and acceleration accepted and
 // unused). Outputs: position, velocity, acceleration (ÿ), contact_force (F/cos α, 0 while
 // flying), contact (1 in contact), drive_torque (F S'), spring_force, load_force,

@@ -1,0 +1,52 @@
+// Real-time pacing of one node: step k is published no earlier than
+//   t_start + (t_k - t_0) / rtf
+// (t_start from the launcher's start command, wall clock), and every publication's
+// lateness against that deadline is recorded. Pacing only delays publication: the numbers
+// are those of a lock-step run.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace mechsim::cosim {
+
+struct RealtimeFigures {
+  double lateness_median = 0, lateness_p99 = 0, lateness_max = 0;  // s
+  long missed_deadlines = 0;     // publications later than one macro step (of wall time)
+  long publications = 0;
+  double rtf_achieved = 0;       // simulated time / wall time since the start
+  double rtf_window = 0;         // over the last second of wall time
+  double paced_wall_time = 0;    // s from the start time (step 0 due) to the last publication
+};
+
+class Pacer {
+ public:
+  // start_wall_ns: Unix time (CLOCK_REALTIME) of step 0.
+  Pacer(std::int64_t start_wall_ns, double t0, double macro_step, double rtf);
+  // Sleeps until step k's deadline (returns at once when already late).
+  void wait_for_deadline(std::uint64_t k) const;
+  // Records the publication of step k now; returns its lateness in s.
+  double published(std::uint64_t k);
+  RealtimeFigures figures() const;  // sorts the record: call at the end
+  // The cheap part (no percentiles), for heartbeats.
+  RealtimeFigures running_figures() const;
+  // Seconds of wall time since the start.
+  double elapsed() const;
+  static std::int64_t now_ns();
+
+ private:
+  std::int64_t deadline_ns(std::uint64_t k) const;
+  std::int64_t start_ns_;
+  double t0_, h_, rtf_;
+  std::vector<float> lateness_;
+  long missed_ = 0;
+  double max_late_ = 0;
+  std::int64_t last_publication_ns_ = 0;
+  std::uint64_t last_k_ = 0;
+  // (wall, simulated) at the start of the current and the previous one-second window
+  std::int64_t window_wall_ = 0, previous_window_wall_ = 0;
+  double window_sim_ = 0, previous_window_sim_ = 0;
+};
+
+}  // namespace mechsim::cosim

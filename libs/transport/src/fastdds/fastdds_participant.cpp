@@ -1,0 +1,379 @@
+// Fast DDS 2.9 (C++ DDS API) backend of the transport seam. Same QoS contract as the
+// Cyclone backend (participant.h, docs/dds.md), so the two interoperate topic by topic.
+#include "fastdds_participant.h"
+
+#include <condition_variable>
+#include <cstdlib>
+#include <map>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+
+#include <fastdds/dds/domain/DomainParticipant.hpp>
+#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <fastdds/dds/publisher/DataWriter.hpp>
+#include <fastdds/dds/publisher/Publisher.hpp>
+#include <fastdds/dds/subscriber/DataReader.hpp>
+#include <fastdds/dds/subscriber/DataReaderListener.hpp>
+#include <fastdds/dds/subscriber/SampleInfo.hpp>
+#include <fastdds/dds/subscriber/Subscriber.hpp>
+#include <fastdds/dds/topic/Topic.hpp>
+#include <fastdds/dds/topic/TypeSupport.hpp>
+
+#include "fastdds_types.h"
+#include "fastddsgen/controlPubSubTypes.h"
+#include "fastddsgen/statusPubSubTypes.h"
+
+namespace mechsim::transport::fastdds {
+
+namespace dds = eprosima::fastdds::dds;
+using eprosima::fastrtps::Duration_t;
+using ReturnCode = eprosima::fastrtps::types::ReturnCode_t;
+
+namespace {
+
+[[noreturn]] void fail(const std::string& what) { throw std::runtime_error("Fast DDS: " + what); }
+
+template <class T>
+T* check(T* entity, const std::string& what) {
+  if (entity == nullptr) fail(what + " failed (see the Fast DDS log above)");
+  return entity;
+}
+
+Duration_t to_duration(std::chrono::nanoseconds d) {
+  const auto s = std::chrono::duration_cast<std::chrono::seconds>(d);
+  return Duration_t(static_cast<std::int32_t>(s.count()), static_cast<std::uint32_t>((d - s).count()));
+}
+
+// QoS contract (participant.h). Everything else (data sharing, memory policy) comes from
+// the default profiles of the XML file, so the UDP profile can switch data sharing off.
+void data_qos(dds::ReliabilityQosPolicy& reliability, dds::HistoryQosPolicy& history, dds::DurabilityQosPolicy& durability) {
+  reliability.kind = dds::RELIABLE_RELIABILITY_QOS;
+  reliability.max_blocking_time = Duration_t(30, 0);
+  history.kind = dds::KEEP_ALL_HISTORY_QOS;
+  durability.kind = dds::VOLATILE_DURABILITY_QOS;
+}
+
+void control_qos(dds::ReliabilityQosPolicy& reliability, dds::HistoryQosPolicy& history, dds::DurabilityQosPolicy& durability) {
+  reliability.kind = dds::RELIABLE_RELIABILITY_QOS;
+  reliability.max_blocking_time = Duration_t(10, 0);
+  history.kind = dds::KEEP_LAST_HISTORY_QOS;
+  history.depth = 1;
+  durability.kind = dds::TRANSIENT_LOCAL_DURABILITY_QOS;
+}
+
+void status_qos(dds::ReliabilityQosPolicy& reliability, dds::HistoryQosPolicy& history, dds::DurabilityQosPolicy& durability) {
+  reliability.kind = dds::BEST_EFFORT_RELIABILITY_QOS;
+  history.kind = dds::KEEP_LAST_HISTORY_QOS;
+  history.depth = 256;
+  durability.kind = dds::VOLATILE_DURABILITY_QOS;
+}
+
+using QosSetter = void (*)(dds::ReliabilityQosPolicy&, dds::HistoryQosPolicy&, dds::DurabilityQosPolicy&);
+
+// A flag raised for every sample any reader receives, or by wake().
+class WakeSignal {
+ public:
+  void raise() {
+    {
+      std::lock_guard lock(mutex_);
+      raised_ = true;
+    }
+    cv_.notify_all();
+  }
+  bool wait(std::chrono::nanoseconds timeout) {
+    std::unique_lock lock(mutex_);
+    const bool got = cv_.wait_for(lock, timeout, [this] { return raised_; });
+    raised_ = false;
+    return got;
+  }
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable cv_;
+  bool raised_ = false;
+};
+
+class DataListener final : public dds::DataReaderListener {
+ public:
+  explicit DataListener(WakeSignal& signal) : signal_(signal) {}
+  void on_data_available(dds::DataReader*) override { signal_.raise(); }
+
+ private:
+  WakeSignal& signal_;
+};
+
+void copy_bounded(std::string& dst, const std::string& src, std::size_t capacity) { dst = src.substr(0, capacity); }
+
+}  // namespace
+
+// The DDS entities of one participant. Writers and readers hold a shared_ptr to it, so the
+// participant is deleted only after the last of them (Fast DDS refuses to delete a
+// participant that still has entities, and a dangling DataWriter* would crash).
+struct FastCore {
+  dds::DomainParticipant* participant = nullptr;
+  dds::Publisher* publisher = nullptr;
+  dds::Subscriber* subscriber = nullptr;
+  std::map<std::string, dds::Topic*> topics;
+  WakeSignal signal;
+  DataListener listener{signal};
+
+  ~FastCore() {
+    if (participant == nullptr) return;
+    participant->delete_contained_entities();
+    dds::DomainParticipantFactory::get_instance()->delete_participant(participant);
+  }
+
+  dds::Topic* topic(const std::string& name, dds::TopicDataType* type_support) {
+    dds::TypeSupport type(type_support);  // owns type_support from here on
+    auto it = topics.find(name);
+    if (it != topics.end()) return it->second;
+    if (participant->find_type(type.get_type_name()).empty() && participant->register_type(type) != ReturnCode::RETCODE_OK)
+      fail("register type " + type.get_type_name());
+    dds::Topic* t = check(participant->create_topic(name, type.get_type_name(), dds::TOPIC_QOS_DEFAULT), "create topic " + name);
+    topics.emplace(name, t);
+    return t;
+  }
+
+  dds::DataWriter* writer(const std::string& topic_name, dds::TopicDataType* type_support, QosSetter qos_setter) {
+    dds::Topic* t = topic(topic_name, type_support);
+    dds::DataWriterQos qos = publisher->get_default_datawriter_qos();
+    qos_setter(qos.reliability(), qos.history(), qos.durability());
+    return check(publisher->create_datawriter(t, qos), "create writer on " + topic_name);
+  }
+
+  dds::DataReader* reader(const std::string& topic_name, dds::TopicDataType* type_support, QosSetter qos_setter) {
+    dds::Topic* t = topic(topic_name, type_support);
+    dds::DataReaderQos qos = subscriber->get_default_datareader_qos();
+    qos_setter(qos.reliability(), qos.history(), qos.durability());
+    return check(subscriber->create_datareader(t, qos, &listener, dds::StatusMask::data_available()),
+                 "create reader on " + topic_name);
+  }
+};
+
+namespace {
+
+int publication_matched(dds::DataWriter* w) {
+  dds::PublicationMatchedStatus st;
+  return w->get_publication_matched_status(st) == ReturnCode::RETCODE_OK ? st.current_count : 0;
+}
+
+int subscription_matched(dds::DataReader* r) {
+  dds::SubscriptionMatchedStatus st;
+  return r->get_subscription_matched_status(st) == ReturnCode::RETCODE_OK ? st.current_count : 0;
+}
+
+// Takes one valid sample into `data` (a generated object); skips disposal/unregistration
+// notices. Returns false when none is left.
+bool take_one(dds::DataReader* reader, void* data) {
+  dds::SampleInfo info;
+  for (;;) {
+    ReturnCode rc = reader->take_next_sample(data, &info);
+    if (rc == ReturnCode::RETCODE_NO_DATA) return false;
+    if (rc != ReturnCode::RETCODE_OK) fail("take on " + reader->get_topicdescription()->get_name());
+    if (info.valid_data) return true;
+  }
+}
+
+// Base of every writer/reader: keeps the core alive and deletes its entity.
+class Endpoint {
+ protected:
+  explicit Endpoint(std::shared_ptr<FastCore> core) : core_(std::move(core)) {}
+  std::shared_ptr<FastCore> core_;
+};
+
+class FastSampleWriter final : public SampleWriter, Endpoint {
+ public:
+  FastSampleWriter(std::shared_ptr<FastCore> core, dds::DataWriter* w, const FastType& type)
+      : Endpoint(std::move(core)), writer_(w), type_(type), sample_(type.make_sample()) {}
+  ~FastSampleWriter() override { core_->publisher->delete_datawriter(writer_); }
+  void write(const SampleHeader& header, std::span<const double> values) override {
+    if (values.size() != type_.topic_type().fields.size())
+      throw std::logic_error("write " + type_.topic_type().idl_name + ": wrong number of values");
+    sample_->store(header, values);
+    // Blocks while the KEEP_ALL history is full, up to the reliability's max_blocking_time.
+    if (!writer_->write(sample_->data())) fail("write " + type_.topic_type().idl_name);
+  }
+  int matched_readers() const override { return publication_matched(writer_); }
+  void flush(std::chrono::nanoseconds timeout) override { writer_->wait_for_acknowledgments(to_duration(timeout)); }
+
+ private:
+  dds::DataWriter* writer_;
+  const FastType& type_;
+  std::unique_ptr<FastSample> sample_;
+};
+
+class FastSampleReader final : public SampleReader, Endpoint {
+ public:
+  FastSampleReader(std::shared_ptr<FastCore> core, dds::DataReader* r, const FastType& type)
+      : Endpoint(std::move(core)), reader_(r), sample_(type.make_sample()) {}
+  ~FastSampleReader() override { core_->subscriber->delete_datareader(reader_); }
+  bool take(SampleHeader& header, std::vector<double>& values) override {
+    if (!take_one(reader_, sample_->data())) return false;
+    sample_->load(header, values);
+    return true;
+  }
+  int matched_writers() const override { return subscription_matched(reader_); }
+
+ private:
+  dds::DataReader* reader_;
+  std::unique_ptr<FastSample> sample_;
+};
+
+class FastControlWriter final : public ControlWriter, Endpoint {
+ public:
+  FastControlWriter(std::shared_ptr<FastCore> core, dds::DataWriter* w) : Endpoint(std::move(core)), writer_(w) {}
+  ~FastControlWriter() override { core_->publisher->delete_datawriter(writer_); }
+  void write(const ControlMessage& m) override {
+    mechsim::msg::Control c;
+    c.header().run_id(m.run_id);
+    c.command(static_cast<std::int32_t>(m.command));
+    c.end_time(m.end_time);
+    c.macro_step(m.macro_step);
+    c.mode(static_cast<std::int32_t>(m.mode));
+    c.rtf(m.rtf);
+    c.start_wall_ns(m.start_wall_ns);
+    if (!writer_->write(&c)) fail("write control");
+  }
+  int matched_readers() const override { return publication_matched(writer_); }
+
+ private:
+  dds::DataWriter* writer_;
+};
+
+class FastControlReader final : public ControlReader, Endpoint {
+ public:
+  FastControlReader(std::shared_ptr<FastCore> core, dds::DataReader* r) : Endpoint(std::move(core)), reader_(r) {}
+  ~FastControlReader() override { core_->subscriber->delete_datareader(reader_); }
+  std::optional<ControlMessage> take() override {
+    mechsim::msg::Control c;
+    if (!take_one(reader_, &c)) return std::nullopt;
+    ControlMessage m;
+    m.run_id = c.header().run_id();
+    m.command = static_cast<ControlCommand>(c.command());
+    m.end_time = c.end_time();
+    m.macro_step = c.macro_step();
+    m.mode = static_cast<RunMode>(c.mode());
+    m.rtf = c.rtf();
+    m.start_wall_ns = c.start_wall_ns();
+    return m;
+  }
+
+ private:
+  dds::DataReader* reader_;
+};
+
+class FastStatusWriter final : public StatusWriter, Endpoint {
+ public:
+  FastStatusWriter(std::shared_ptr<FastCore> core, dds::DataWriter* w) : Endpoint(std::move(core)), writer_(w) {}
+  ~FastStatusWriter() override { core_->publisher->delete_datawriter(writer_); }
+  void write(const StatusMessage& m) override {
+    mechsim::msg::Status s;
+    s.header().run_id(m.header.run_id);
+    s.header().step(m.header.step);
+    s.header().t(m.header.t);
+    std::string node, message;
+    copy_bounded(node, m.node, 64);  // string<64> node, string<256> message in status.idl
+    copy_bounded(message, m.message, 256);
+    s.node(node);
+    s.state(static_cast<std::int32_t>(m.state));
+    s.wall_time(m.wall_time);
+    s.solver_steps(m.solver_steps);
+    s.rhs_evals(m.rhs_evals);
+    s.error_test_failures(m.error_test_failures);
+    s.nonlinear_failures(m.nonlinear_failures);
+    s.roots_found(m.roots_found);
+    s.last_step_size(m.last_step_size);
+    s.last_order(m.last_order);
+    s.lateness_max(m.lateness_max);
+    s.lateness_p99(m.lateness_p99);
+    s.missed_deadlines(m.missed_deadlines);
+    s.rtf_window(m.rtf_window);
+    s.message(message);
+    writer_->write(&s);  // best effort: a lost heartbeat is harmless
+  }
+
+ private:
+  dds::DataWriter* writer_;
+};
+
+class FastStatusReader final : public StatusReader, Endpoint {
+ public:
+  FastStatusReader(std::shared_ptr<FastCore> core, dds::DataReader* r) : Endpoint(std::move(core)), reader_(r) {}
+  ~FastStatusReader() override { core_->subscriber->delete_datareader(reader_); }
+  std::optional<StatusMessage> take() override {
+    mechsim::msg::Status s;
+    if (!take_one(reader_, &s)) return std::nullopt;
+    StatusMessage m;
+    m.header = {s.header().run_id(), s.header().step(), s.header().t()};
+    m.node = s.node().to_string();
+    m.state = static_cast<NodeState>(s.state());
+    m.wall_time = s.wall_time();
+    m.solver_steps = s.solver_steps();
+    m.rhs_evals = s.rhs_evals();
+    m.error_test_failures = s.error_test_failures();
+    m.nonlinear_failures = s.nonlinear_failures();
+    m.roots_found = s.roots_found();
+    m.last_step_size = s.last_step_size();
+    m.last_order = s.last_order();
+    m.lateness_max = s.lateness_max();
+    m.lateness_p99 = s.lateness_p99();
+    m.missed_deadlines = s.missed_deadlines();
+    m.rtf_window = s.rtf_window();
+    m.message = s.message().to_string();
+    return m;
+  }
+
+ private:
+  dds::DataReader* reader_;
+};
+
+}  // namespace
+
+FastParticipant::FastParticipant(int domain_id) : core_(std::make_shared<FastCore>()) {
+  auto* factory = dds::DomainParticipantFactory::get_instance();
+  // PARTICIPANT_QOS_DEFAULT: the default profile of FASTRTPS_DEFAULT_PROFILES_FILE if set.
+  core_->participant = check(factory->create_participant(static_cast<dds::DomainId_t>(domain_id), dds::PARTICIPANT_QOS_DEFAULT),
+                             "create participant on domain " + std::to_string(domain_id) +
+                                 (std::getenv("FASTRTPS_DEFAULT_PROFILES_FILE")
+                                      ? std::string(" (profiles from ") + std::getenv("FASTRTPS_DEFAULT_PROFILES_FILE") + ")"
+                                      : std::string()));
+  core_->publisher = check(core_->participant->create_publisher(dds::PUBLISHER_QOS_DEFAULT), "create publisher");
+  core_->subscriber = check(core_->participant->create_subscriber(dds::SUBSCRIBER_QOS_DEFAULT), "create subscriber");
+}
+
+FastParticipant::~FastParticipant() = default;
+
+std::unique_ptr<SampleWriter> FastParticipant::create_writer(const std::string& topic, const TopicType& type) {
+  const FastType& ft = fast_type(type);
+  dds::DataWriter* w = core_->writer(topic, ft.make_type_support(), data_qos);
+  return std::make_unique<FastSampleWriter>(core_, w, ft);
+}
+
+std::unique_ptr<SampleReader> FastParticipant::create_reader(const std::string& topic, const TopicType& type) {
+  const FastType& ft = fast_type(type);
+  dds::DataReader* r = core_->reader(topic, ft.make_type_support(), data_qos);
+  return std::make_unique<FastSampleReader>(core_, r, ft);
+}
+
+std::unique_ptr<ControlWriter> FastParticipant::create_control_writer() {
+  return std::make_unique<FastControlWriter>(core_, core_->writer(kControlTopic, new mechsim::msg::ControlPubSubType(), control_qos));
+}
+
+std::unique_ptr<ControlReader> FastParticipant::create_control_reader() {
+  return std::make_unique<FastControlReader>(core_, core_->reader(kControlTopic, new mechsim::msg::ControlPubSubType(), control_qos));
+}
+
+std::unique_ptr<StatusWriter> FastParticipant::create_status_writer() {
+  return std::make_unique<FastStatusWriter>(core_, core_->writer(kStatusTopic, new mechsim::msg::StatusPubSubType(), status_qos));
+}
+
+std::unique_ptr<StatusReader> FastParticipant::create_status_reader() {
+  return std::make_unique<FastStatusReader>(core_, core_->reader(kStatusTopic, new mechsim::msg::StatusPubSubType(), status_qos));
+}
+
+bool FastParticipant::wait(std::chrono::nanoseconds timeout) { return core_->signal.wait(timeout); }
+
+void FastParticipant::wake() { core_->signal.raise(); }
+
+}  // namespace mechsim::transport::fastdds

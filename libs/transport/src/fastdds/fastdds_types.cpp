@@ -1,0 +1,125 @@
+#include "fastdds_types.h"
+
+#include <stdexcept>
+#include <string>
+
+#include "fastddsgen/camPubSubTypes.h"
+#include "fastddsgen/followerPubSubTypes.h"
+#include "fastddsgen/servoPubSubTypes.h"
+#include "fastddsgen/slidePubSubTypes.h"
+#include "fastddsgen/tachoPubSubTypes.h"
+
+namespace mechsim::transport::fastdds {
+
+namespace {
+
+// One field of a generated class, reached through its mutable accessor.
+template <class Msg>
+struct Slot {
+  const char* name;
+  double& (Msg::*f64)();
+  bool& (Msg::*flag)();
+};
+
+template <class Msg>
+class BoundSample final : public FastSample {
+ public:
+  explicit BoundSample(const std::vector<Slot<Msg>>& slots) : slots_(slots) {}
+  void* data() override { return &msg_; }
+  void store(const SampleHeader& header, std::span<const double> values) override {
+    msg_.header().run_id(header.run_id);
+    msg_.header().step(header.step);
+    msg_.header().t(header.t);
+    for (std::size_t i = 0; i < slots_.size(); ++i) {
+      if (slots_[i].f64)
+        (msg_.*slots_[i].f64)() = values[i];
+      else
+        (msg_.*slots_[i].flag)() = values[i] != 0.0;
+    }
+  }
+  void load(SampleHeader& header, std::vector<double>& values) override {
+    header = {msg_.header().run_id(), msg_.header().step(), msg_.header().t()};
+    values.resize(slots_.size());
+    for (std::size_t i = 0; i < slots_.size(); ++i)
+      values[i] = slots_[i].f64 ? (msg_.*slots_[i].f64)() : ((msg_.*slots_[i].flag)() ? 1.0 : 0.0);
+  }
+
+ private:
+  const std::vector<Slot<Msg>>& slots_;
+  Msg msg_;
+};
+
+template <class Msg, class PubSub>
+class Binding final : public FastType {
+ public:
+  Binding(const char* short_name, std::vector<Slot<Msg>> slots) : type_(find_topic_type(short_name)), slots_(std::move(slots)) {
+    // The slots must mirror topic_types.cpp field by field, names included.
+    if (type_ == nullptr || slots_.size() != type_->fields.size())
+      throw std::logic_error(std::string("Fast DDS binding of ") + short_name + " does not match topic_types.cpp");
+    for (std::size_t i = 0; i < slots_.size(); ++i)
+      if (type_->fields[i].name != slots_[i].name ||
+          (type_->fields[i].kind == FieldKind::boolean) != (slots_[i].flag != nullptr))
+        throw std::logic_error(std::string("Fast DDS binding of ") + short_name + ": field " + std::to_string(i) + " is " +
+                               slots_[i].name + ", topic_types.cpp says " + type_->fields[i].name);
+  }
+  const TopicType& topic_type() const override { return *type_; }
+  eprosima::fastdds::dds::TopicDataType* make_type_support() const override { return new PubSub(); }
+  std::unique_ptr<FastSample> make_sample() const override { return std::make_unique<BoundSample<Msg>>(slots_); }
+
+ private:
+  const TopicType* type_;
+  std::vector<Slot<Msg>> slots_;
+};
+
+#define MECHSIM_F64(Msg, field) Slot<Msg>{#field, static_cast<double& (Msg::*)()>(&Msg::field), nullptr}
+#define MECHSIM_FLAG(Msg, field) Slot<Msg>{#field, nullptr, static_cast<bool& (Msg::*)()>(&Msg::field)}
+
+using namespace mechsim::msg;
+
+std::vector<std::unique_ptr<FastType>> make_bindings() {
+  std::vector<std::unique_ptr<FastType>> b;
+  b.push_back(std::make_unique<Binding<CamState, CamStatePubSubType>>(
+      "CamState", std::vector<Slot<CamState>>{
+                      MECHSIM_F64(CamState, angle), MECHSIM_F64(CamState, speed), MECHSIM_F64(CamState, acceleration),
+                      MECHSIM_F64(CamState, lift), MECHSIM_F64(CamState, lift_d1), MECHSIM_F64(CamState, lift_d2),
+                      MECHSIM_F64(CamState, pressure_angle), MECHSIM_F64(CamState, shaft_torque),
+                      MECHSIM_F64(CamState, drive_power)}));
+  b.push_back(std::make_unique<Binding<FollowerState, FollowerStatePubSubType>>(
+      "FollowerState",
+      std::vector<Slot<FollowerState>>{
+          MECHSIM_F64(FollowerState, position), MECHSIM_F64(FollowerState, velocity),
+          MECHSIM_F64(FollowerState, acceleration), MECHSIM_F64(FollowerState, contact_force),
+          MECHSIM_FLAG(FollowerState, contact), MECHSIM_F64(FollowerState, lift_off_count),
+          MECHSIM_F64(FollowerState, drive_torque), MECHSIM_F64(FollowerState, drive_torque_rest),
+          MECHSIM_F64(FollowerState, reflected_inertia), MECHSIM_F64(FollowerState, spring_force),
+          MECHSIM_F64(FollowerState, load_force), MECHSIM_F64(FollowerState, inertia_force)}));
+  b.push_back(std::make_unique<Binding<ServoCommand, ServoCommandPubSubType>>(
+      "ServoCommand", std::vector<Slot<ServoCommand>>{
+                          MECHSIM_F64(ServoCommand, armature_voltage), MECHSIM_F64(ServoCommand, position_reference),
+                          MECHSIM_F64(ServoCommand, following_error), MECHSIM_F64(ServoCommand, velocity_error),
+                          MECHSIM_FLAG(ServoCommand, saturated)}));
+  b.push_back(std::make_unique<Binding<TachoState, TachoStatePubSubType>>(
+      "TachoState", std::vector<Slot<TachoState>>{
+                        MECHSIM_F64(TachoState, tacho_voltage), MECHSIM_F64(TachoState, motor_angle),
+                        MECHSIM_F64(TachoState, motor_speed), MECHSIM_F64(TachoState, armature_current),
+                        MECHSIM_F64(TachoState, coupling_torque)}));
+  b.push_back(std::make_unique<Binding<SlideState, SlideStatePubSubType>>(
+      "SlideState", std::vector<Slot<SlideState>>{
+                        MECHSIM_F64(SlideState, spindle_angle), MECHSIM_F64(SlideState, spindle_speed),
+                        MECHSIM_F64(SlideState, slide_position), MECHSIM_F64(SlideState, slide_speed),
+                        MECHSIM_F64(SlideState, coupling_torque)}));
+  return b;
+}
+#undef MECHSIM_F64
+#undef MECHSIM_FLAG
+
+}  // namespace
+
+const FastType& fast_type(const TopicType& type) {
+  static const std::vector<std::unique_ptr<FastType>> bindings = make_bindings();
+  for (const auto& b : bindings)
+    if (&b->topic_type() == &type) return *b;
+  throw std::runtime_error("no Fast DDS binding for topic type " + type.idl_name);
+}
+
+}  // namespace mechsim::transport::fastdds

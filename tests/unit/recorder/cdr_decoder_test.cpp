@@ -1,0 +1,170 @@
+// The recorder's CDR decoder: hand-built buffers whose member offsets are written out
+// here from the CDR rules (XCDR1: 8-byte members 8-aligned; XCDR2: 4-aligned; both byte
+// orders), malformed buffers, the layouts against the transport's field lists, and the
+// schema text. Exact comparisons throughout: decoding moves bytes, it computes nothing.
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cstring>
+
+#include "cdr_decoder.h"
+#include "idl_schema.h"
+#include "mechsim/transport/topic_types.h"
+
+namespace mechsim::recorder {
+namespace {
+
+// A CDR buffer under construction: encapsulation header, then values put at payload
+// offsets given by the test (not computed by any alignment code).
+class Buffer {
+ public:
+  Buffer(std::uint16_t encapsulation, std::size_t payload_size, bool big_endian)
+      : bytes_(4 + payload_size, std::byte{0}), big_endian_(big_endian) {
+    bytes_[0] = std::byte(encapsulation >> 8);
+    bytes_[1] = std::byte(encapsulation & 0xff);
+  }
+  template <class T>
+  void put(std::size_t payload_offset, T value) {
+    std::byte b[sizeof(T)];
+    std::memcpy(b, &value, sizeof(T));
+    if (big_endian_ != (std::endian::native == std::endian::big)) std::reverse(b, b + sizeof(T));
+    std::memcpy(bytes_.data() + 4 + payload_offset, b, sizeof(T));
+  }
+  void put_string(std::size_t payload_offset, const std::string& s) {
+    put<std::uint32_t>(payload_offset, static_cast<std::uint32_t>(s.size() + 1));
+    std::memcpy(bytes_.data() + 4 + payload_offset + 4, s.c_str(), s.size() + 1);
+  }
+  std::vector<std::byte>& bytes() { return bytes_; }
+
+ private:
+  std::vector<std::byte> bytes_;
+  bool big_endian_;
+};
+
+void put_header(Buffer& b) {
+  b.put<std::uint64_t>(0, 0x0123456789abcdefULL);
+  b.put<std::uint64_t>(8, 4711);
+  b.put<double>(16, 4.711);
+}
+
+void expect_header(const transport::SampleHeader& h) {
+  EXPECT_EQ(h.run_id, 0x0123456789abcdefULL);
+  EXPECT_EQ(h.step, 4711u);
+  EXPECT_EQ(h.t, 4.711);
+}
+
+// FollowerState: 4 doubles, a boolean, 7 doubles. The boolean at payload offset 56 pushes
+// the next double to 64 under XCDR1 and to 60 under XCDR2.
+std::vector<std::byte> follower_state(std::uint16_t encapsulation, bool big_endian, std::size_t after_bool) {
+  Buffer b(encapsulation, after_bool + 7 * 8, big_endian);
+  put_header(b);
+  for (int i = 0; i < 4; ++i) b.put<double>(24 + 8 * i, 0.5 + i);
+  b.put<std::uint8_t>(56, 1);
+  for (int i = 0; i < 7; ++i) b.put<double>(after_bool + 8 * i, -1.25 * (i + 1));
+  return b.bytes();
+}
+
+void expect_follower_state(const DecodedSample& s) {
+  expect_header(s.header);
+  const MessageLayout& l = *find_layout("FollowerState");
+  ASSERT_EQ(s.values.size(), 12u);
+  for (int i = 0; i < 4; ++i) EXPECT_EQ(std::get<double>(s.values[i]), 0.5 + i) << l.fields[i].name;
+  EXPECT_EQ(std::get<bool>(s.values[l.field_index("contact")]), true);
+  for (int i = 0; i < 7; ++i) EXPECT_EQ(std::get<double>(s.values[5 + i]), -1.25 * (i + 1)) << l.fields[5 + i].name;
+}
+
+TEST(CdrDecoder, Xcdr1LittleEndianAlignsDoublesToEight) {
+  expect_follower_state(decode_sample(follower_state(0x0001, false, 64), *find_layout("FollowerState")));
+}
+
+TEST(CdrDecoder, Xcdr1BigEndian) {
+  expect_follower_state(decode_sample(follower_state(0x0000, true, 64), *find_layout("FollowerState")));
+}
+
+TEST(CdrDecoder, Xcdr2AlignsDoublesToFourInBothByteOrders) {
+  expect_follower_state(decode_sample(follower_state(0x0007, false, 60), *find_layout("FollowerState")));
+  expect_follower_state(decode_sample(follower_state(0x0006, true, 60), *find_layout("FollowerState")));
+}
+
+TEST(CdrDecoder, StatusWithStringsAndIntegers) {
+  // XCDR1 LE. node "follower" (length 9 with the NUL) at 24, chars 28..36; state (long)
+  // at 40; wall_time at 48; five long longs 56..88; last_step_size 96; last_order 104;
+  // message length at 108, chars from 112.
+  Buffer b(0x0001, 112 + 5, false);
+  put_header(b);
+  b.put_string(24, "follower");
+  b.put<std::int32_t>(40, 2);
+  b.put<double>(48, 0.25);
+  for (int i = 0; i < 5; ++i) b.put<std::int64_t>(56 + 8 * i, -(i + 1) * 1000000000000LL);
+  b.put<double>(96, 1e-4);
+  b.put<std::int32_t>(104, 3);
+  b.put_string(108, "a\"b");
+  const MessageLayout& l = *find_layout("mechsim::msg::Status");
+  const DecodedSample s = decode_sample(b.bytes(), l);
+  expect_header(s.header);
+  EXPECT_EQ(std::get<std::string>(s.values[l.field_index("node")]), "follower");
+  EXPECT_EQ(std::get<std::int64_t>(s.values[l.field_index("state")]), 2);
+  EXPECT_EQ(std::get<double>(s.values[l.field_index("wall_time")]), 0.25);
+  EXPECT_EQ(std::get<std::int64_t>(s.values[l.field_index("solver_steps")]), -1000000000000LL);
+  EXPECT_EQ(std::get<std::int64_t>(s.values[l.field_index("roots_found")]), -5000000000000LL);
+  EXPECT_EQ(std::get<double>(s.values[l.field_index("last_step_size")]), 1e-4);
+  EXPECT_EQ(std::get<std::int64_t>(s.values[l.field_index("last_order")]), 3);
+  EXPECT_EQ(std::get<std::string>(s.values[l.field_index("message")]), "a\"b");
+}
+
+TEST(CdrDecoder, RefusesMalformedBuffers) {
+  const MessageLayout& l = *find_layout("FollowerState");
+  auto good = follower_state(0x0001, false, 64);
+  auto short_one = good;
+  short_one.resize(good.size() - 1);
+  EXPECT_THROW(decode_sample(short_one, l), CdrError);
+  EXPECT_THROW(decode_header(std::span(good).first(3)), CdrError);
+  auto parameter_list = good;  // PL_CDR_LE: a mutable type, never a mechsim one
+  parameter_list[1] = std::byte{0x03};
+  EXPECT_THROW(decode_sample(parameter_list, l), CdrError);
+  auto bad_bool = good;
+  bad_bool[4 + 56] = std::byte{2};
+  EXPECT_THROW(decode_sample(bad_bool, l), CdrError);
+
+  Buffer status(0x0001, 40, false);
+  put_header(status);
+  status.put<std::uint32_t>(24, 4);
+  std::memcpy(status.bytes().data() + 4 + 28, "abcd", 4);  // no NUL where the length says
+  EXPECT_THROW(decode_sample(status.bytes(), *find_layout("Status")), CdrError);
+}
+
+TEST(CdrDecoder, HeaderAloneDecodesFromAnyType) {
+  expect_header(decode_header(follower_state(0x0007, false, 60)));
+}
+
+TEST(MessageLayouts, DataTypesMirrorTheTransportFieldLists) {
+  for (const transport::TopicType* t : transport::all_topic_types()) {
+    const MessageLayout* l = find_layout(t->idl_name);
+    ASSERT_NE(l, nullptr) << t->idl_name;
+    EXPECT_EQ(l->idl_file, t->idl_file);
+    ASSERT_EQ(l->fields.size(), t->fields.size()) << t->idl_name;
+    for (std::size_t i = 0; i < t->fields.size(); ++i) {
+      EXPECT_EQ(l->fields[i].name, t->fields[i].name);
+      EXPECT_EQ(l->fields[i].kind, t->fields[i].kind == transport::FieldKind::boolean ? CdrKind::boolean : CdrKind::f64);
+    }
+  }
+  EXPECT_EQ(find_layout("CamState"), find_layout("mechsim::msg::CamState"));
+  EXPECT_NE(find_layout("Control"), nullptr);
+  EXPECT_EQ(find_layout("Unknown"), nullptr);
+}
+
+TEST(IdlSchema, IsSelfContainedIdlWithoutPreprocessorLines) {
+  for (const MessageLayout& l : all_layouts()) {
+    const std::string text = schema_text(l);
+    const std::string short_name = l.type_name.substr(l.type_name.rfind(':') + 1);
+    EXPECT_NE(text.find("struct Header"), std::string::npos) << l.type_name;
+    EXPECT_NE(text.find("struct " + short_name + " "), std::string::npos) << l.type_name;
+    EXPECT_LT(text.find("struct Header"), text.find("struct " + short_name + " ")) << "Header must come first";
+    EXPECT_EQ(text.find("\n#"), std::string::npos) << text;
+    EXPECT_NE(text[0], '#');
+    for (const auto& f : l.fields) EXPECT_NE(text.find(" " + f.name + ";"), std::string::npos) << l.type_name << "." << f.name;
+  }
+}
+
+}  // namespace
+}  // namespace mechsim::recorder

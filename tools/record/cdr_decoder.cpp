@@ -1,0 +1,187 @@
+#include "cdr_decoder.h"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+
+#include "mechsim/transport/topic_types.h"
+
+namespace mechsim::recorder {
+
+int MessageLayout::field_index(std::string_view name) const {
+  for (std::size_t i = 0; i < fields.size(); ++i)
+    if (fields[i].name == name) return static_cast<int>(i);
+  return -1;
+}
+
+namespace {
+
+std::vector<MessageLayout> make_layouts() {
+  std::vector<MessageLayout> layouts;
+  for (const transport::TopicType* t : transport::all_topic_types()) {
+    MessageLayout l{t->idl_name, t->idl_file, {}};
+    for (const auto& f : t->fields)
+      l.fields.push_back({f.name, f.kind == transport::FieldKind::boolean ? CdrKind::boolean : CdrKind::f64});
+    layouts.push_back(std::move(l));
+  }
+  // Mirrors idl/control.idl (long = 32 bits).
+  layouts.push_back({"mechsim::msg::Control",
+                     "control.idl",
+                     {{"command", CdrKind::i32},
+                      {"end_time", CdrKind::f64},
+                      {"macro_step", CdrKind::f64},
+                      {"mode", CdrKind::i32},
+                      {"rtf", CdrKind::f64}}});
+  // Mirrors idl/status.idl (string<64> and string<256> encode like unbounded strings).
+  layouts.push_back({"mechsim::msg::Status",
+                     "status.idl",
+                     {{"node", CdrKind::string},
+                      {"state", CdrKind::i32},
+                      {"wall_time", CdrKind::f64},
+                      {"solver_steps", CdrKind::i64},
+                      {"rhs_evals", CdrKind::i64},
+                      {"error_test_failures", CdrKind::i64},
+                      {"nonlinear_failures", CdrKind::i64},
+                      {"roots_found", CdrKind::i64},
+                      {"last_step_size", CdrKind::f64},
+                      {"last_order", CdrKind::i32},
+                      {"message", CdrKind::string}}});
+  return layouts;
+}
+
+// Reads members of a plain CDR payload in order, aligning each as the encoding requires.
+class CdrCursor {
+ public:
+  explicit CdrCursor(std::span<const std::byte> cdr) {
+    if (cdr.size() < 4) throw CdrError("CDR sample of " + std::to_string(cdr.size()) + " bytes: no encapsulation header");
+    const unsigned id = (std::to_integer<unsigned>(cdr[0]) << 8) | std::to_integer<unsigned>(cdr[1]);
+    switch (id) {
+      case 0x0000: big_endian_ = true, max_align_ = 8; break;   // CDR_BE (XCDR1)
+      case 0x0001: big_endian_ = false, max_align_ = 8; break;  // CDR_LE (XCDR1)
+      case 0x0006: big_endian_ = true, max_align_ = 4; break;   // CDR2_BE (XCDR2)
+      case 0x0007: big_endian_ = false, max_align_ = 4; break;  // CDR2_LE (XCDR2)
+      default: {
+        char buf[64];
+        std::snprintf(buf, sizeof buf, "unsupported CDR encapsulation 0x%04x", id);
+        throw CdrError(std::string(buf) + " (a @final struct is plain CDR: 0x0000, 0x0001, 0x0006 or 0x0007)");
+      }
+    }
+    payload_ = cdr.subspan(4);
+  }
+
+  template <class T>
+  T scalar() {
+    align(sizeof(T));
+    need(sizeof(T));
+    std::array<std::byte, sizeof(T)> b;
+    std::memcpy(b.data(), payload_.data() + pos_, sizeof(T));
+    if (big_endian_ != (std::endian::native == std::endian::big)) std::reverse(b.begin(), b.end());
+    pos_ += sizeof(T);
+    T v;
+    std::memcpy(&v, b.data(), sizeof(T));
+    return v;
+  }
+
+  bool boolean() {
+    need(1);
+    const auto v = std::to_integer<unsigned>(payload_[pos_++]);
+    if (v > 1) throw CdrError("boolean byte " + std::to_string(v) + " at payload offset " + std::to_string(pos_ - 1));
+    return v == 1;
+  }
+
+  std::string string() {
+    const auto length = scalar<std::uint32_t>();  // NUL included
+    if (length == 0) throw CdrError("string of length 0 (the NUL is missing)");
+    need(length);
+    const char* p = reinterpret_cast<const char*>(payload_.data() + pos_);
+    if (p[length - 1] != '\0') throw CdrError("string not terminated by NUL");
+    pos_ += length;
+    return std::string(p, length - 1);
+  }
+
+ private:
+  void align(std::size_t size) {
+    const std::size_t a = std::min(size, max_align_);
+    pos_ = (pos_ + a - 1) / a * a;
+  }
+  void need(std::size_t n) const {
+    if (pos_ + n > payload_.size())
+      throw CdrError("CDR sample too short: needs " + std::to_string(pos_ + n) + " payload bytes, has " +
+                     std::to_string(payload_.size()));
+  }
+  std::span<const std::byte> payload_;
+  std::size_t pos_ = 0;
+  std::size_t max_align_ = 8;
+  bool big_endian_ = false;
+};
+
+transport::SampleHeader read_header(CdrCursor& c) {
+  transport::SampleHeader h;
+  h.run_id = c.scalar<std::uint64_t>();
+  h.step = c.scalar<std::uint64_t>();
+  h.t = c.scalar<double>();
+  return h;
+}
+
+}  // namespace
+
+const std::vector<MessageLayout>& all_layouts() {
+  static const std::vector<MessageLayout> layouts = make_layouts();
+  return layouts;
+}
+
+const MessageLayout* find_layout(std::string_view name) {
+  for (const auto& l : all_layouts()) {
+    std::string_view scoped = l.type_name;
+    if (name == scoped || name == scoped.substr(scoped.rfind(':') + 1)) return &l;
+  }
+  return nullptr;
+}
+
+transport::SampleHeader decode_header(std::span<const std::byte> cdr) {
+  CdrCursor c(cdr);
+  return read_header(c);
+}
+
+DecodedSample decode_sample(std::span<const std::byte> cdr, const MessageLayout& layout) {
+  CdrCursor c(cdr);
+  DecodedSample s;
+  s.header = read_header(c);
+  s.values.reserve(layout.fields.size());
+  for (const auto& f : layout.fields) {
+    switch (f.kind) {
+      case CdrKind::f64: s.values.emplace_back(c.scalar<double>()); break;
+      case CdrKind::boolean: s.values.emplace_back(c.boolean()); break;
+      case CdrKind::i32: s.values.emplace_back(static_cast<std::int64_t>(c.scalar<std::int32_t>())); break;
+      case CdrKind::i64: s.values.emplace_back(c.scalar<std::int64_t>()); break;
+      case CdrKind::string: s.values.emplace_back(c.string()); break;
+    }
+  }
+  return s;
+}
+
+double as_number(const FieldValue& v) {
+  if (const auto* d = std::get_if<double>(&v)) return *d;
+  if (const auto* b = std::get_if<bool>(&v)) return *b ? 1.0 : 0.0;
+  if (const auto* i = std::get_if<std::int64_t>(&v)) return static_cast<double>(*i);
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+std::string to_text(const FieldValue& v) {
+  if (const auto* d = std::get_if<double>(&v)) {
+    // The shortest text that reads back to the same double.
+    char buf[32];
+    const auto r = std::to_chars(buf, buf + sizeof buf, *d);
+    return std::string(buf, r.ptr);
+  }
+  if (const auto* b = std::get_if<bool>(&v)) return *b ? "true" : "false";
+  if (const auto* i = std::get_if<std::int64_t>(&v)) return std::to_string(*i);
+  return std::get<std::string>(v);
+}
+
+}  // namespace mechsim::recorder

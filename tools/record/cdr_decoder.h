@@ -1,0 +1,71 @@
+// Decoding mechsim samples from their CDR bytes (what a recording stores), without DDS.
+//
+// Every mechsim type is a @final struct: Header {uint64 run_id; uint64 step; double t}
+// followed by scalar members (and, in Status, bounded strings). Its plain CDR encoding is
+// the 4-byte encapsulation header (representation id, options) and then the members in
+// order, each aligned to its size relative to the start of the payload (the byte after the
+// encapsulation header): XCDR1 aligns 8-byte members to 8, XCDR2 to 4. Booleans take one
+// byte, long 4, long long 8, a string a uint32 length (NUL included), its bytes and the NUL.
+// @final structs have no member headers in either version.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include "mechsim/transport/messages.h"
+
+namespace mechsim::recorder {
+
+enum class CdrKind { f64, boolean, i32, i64, string };
+
+struct CdrField {
+  std::string name;
+  CdrKind kind;
+};
+
+// The members after the header, in IDL order, and where the IDL text lives.
+struct MessageLayout {
+  std::string type_name;  // fully scoped, e.g. "mechsim::msg::CamState"
+  std::string idl_file;   // under idl/, e.g. "cam.idl"
+  std::vector<CdrField> fields;
+  int field_index(std::string_view name) const;  // -1 when absent
+};
+
+// The layouts of every type mechsim publishes: the data types built from the field lists
+// of transport/topic_types.h (f64 -> double, boolean -> boolean), Control and Status
+// mirrored from idl/control.idl and idl/status.idl.
+const std::vector<MessageLayout>& all_layouts();
+// By fully scoped or short name; nullptr when unknown.
+const MessageLayout* find_layout(std::string_view type_name);
+
+using FieldValue = std::variant<double, bool, std::int64_t, std::string>;
+
+struct DecodedSample {
+  transport::SampleHeader header;
+  std::vector<FieldValue> values;  // one per layout field
+};
+
+// A buffer that is not a sample of the expected layout: too short, an encapsulation other
+// than plain CDR (XCDR1/XCDR2, either byte order), a string without its NUL.
+class CdrError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Throws CdrError.
+DecodedSample decode_sample(std::span<const std::byte> cdr, const MessageLayout& layout);
+transport::SampleHeader decode_header(std::span<const std::byte> cdr);
+
+// A value as a number (booleans 0/1, integers converted; NaN for a string).
+double as_number(const FieldValue& value);
+// A value as text: doubles in the shortest form that reads back bit-exact, booleans true/false,
+// integers in decimal, strings as they are.
+std::string to_text(const FieldValue& value);
+
+}  // namespace mechsim::recorder
