@@ -32,7 +32,7 @@ CompositeBlock::CompositeBlock(ScenePlan& plan) : Block("composite"), plan_(plan
     for (const auto& edge : nodes[i].inputs) {
       int src = index_of(edge.from);
       for (const auto& [field, input] : edge.field_to_input)
-        wires_[i].push_back({input, src, nodes[src].published_outputs[field]});
+        wires_[i].push_back({input, src, nodes[src].published_outputs[field]});  // >= 0: the plan checked it
     }
 
   for (const auto& node : nodes) {

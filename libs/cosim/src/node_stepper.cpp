@@ -1,6 +1,7 @@
 #include "mechsim/cosim/node_stepper.h"
 
 #include <algorithm>
+#include <limits>
 #include <stdexcept>
 
 namespace mechsim::cosim {
@@ -63,7 +64,10 @@ void NodeStepper::inputs_at(double t, std::uint64_t k, std::span<double> u) {
 
 void NodeStepper::publishable(std::vector<double>& topic_values) const {
   topic_values.resize(node_.published_outputs.size());
-  for (std::size_t f = 0; f < topic_values.size(); ++f) topic_values[f] = y_[node_.published_outputs[f]];
+  for (std::size_t f = 0; f < topic_values.size(); ++f) {
+    const int out = node_.published_outputs[f];
+    topic_values[f] = out >= 0 ? y_[out] : std::numeric_limits<double>::quiet_NaN();
+  }
 }
 
 void NodeStepper::initialise(std::vector<double>& topic_values) {

@@ -63,9 +63,8 @@ ScenePlan ScenePlan::build(const config::Scene& scene) {
     node.block = node.type->make_block(spec.params, coupling);
     node.topic = spec.name + "/" + node.type->topic_suffix;
     for (const auto& field : node.type->publishes->fields) {
-      int out = node.block->output_index(field.name);
-      if (out < 0) throw std::logic_error(spec.type + " block has no output for topic field " + field.name);
-      node.published_outputs.push_back(out);
+      // -1: a field this configuration does not compute (published as NaN).
+      node.published_outputs.push_back(node.block->output_index(field.name));
     }
     plan.nodes_.push_back(std::move(node));
   }
@@ -141,6 +140,9 @@ ScenePlan ScenePlan::build(const config::Scene& scene) {
       int src_index = index_of(e.from);
       for (const auto& [field, input] : e.field_to_input) {
         int src_out = src.published_outputs[field];
+        if (src_out < 0)
+          refuse(scene, "connections", "expected '" + e.from + "' to compute '" + src.type->publishes->fields[field].name +
+                                           "', which '" + node.name() + "' reads; in its configuration it does not");
         for (int o = 0; o < node.block->num_outputs(); ++o)
           for (int ft : node.block->outputs()[o].feedthrough)
             if (ft == input) ports[base[src_index] + src_out].push_back(base[i] + o);

@@ -73,8 +73,9 @@ nc::SlideBlockOptions parse_slide_options(const ConfigNode& p) {
 nc::ServoAmplifierParams parse_servo_amplifier_params(const ConfigNode& p) {
   p.allow_only({"position_gain", "velocity_gain", "integral_time", "antiwindup_time", "tacho_filter_time",
                 "voltage_limit", "tacho_constant", "lead", "velocity_feedforward", "sample_time", "current_limit",
-                "setpoint"});
+                "setpoint", "position_measurement"});
   nc::ServoAmplifierParams a;
+  a.measure_on_motor = p.choice_or("position_measurement", {"spindle", "motor"}, "spindle") == "motor";
   a.position_gain = p.positive_quantity_or("position_gain", dim::frequency, a.position_gain);
   a.velocity_gain = p.positive_quantity_or("velocity_gain", dim::dimensionless, a.velocity_gain);
   a.integral_time = p.positive_quantity_or("integral_time", dim::time, a.integral_time);

@@ -22,7 +22,7 @@ NodeType servo_amplifier_node_type() {
           transport::find_topic_type("ServoCommand"),
           "command",
           make_servo_amplifier,
-          {{transport::find_topic_type("TachoState"), {{"tacho_voltage", "tacho_voltage"}}},
+          {{transport::find_topic_type("TachoState"), {{"tacho_voltage", "tacho_voltage"}, {"motor_angle", "motor_angle"}}},
            {transport::find_topic_type("SlideState"), {{"spindle_angle", "spindle_angle"}}}}};
 }
 

@@ -18,7 +18,7 @@ ServoAmplifierBlock::ServoAmplifierBlock(ServoAmplifierParams params)
   if (p.setpoint_source == SetpointSource::internal) p.setpoint.validate();
 
   in_.tacho_voltage = declare_required_input("tacho_voltage", "V");
-  in_.spindle_angle = declare_required_input("spindle_angle", "rad");
+  in_.spindle_angle = declare_required_input(p.measure_on_motor ? "motor_angle" : "spindle_angle", "rad");
   if (p.setpoint_source == SetpointSource::external)
     in_.position_setpoint = declare_required_input("position_setpoint", "m");
 

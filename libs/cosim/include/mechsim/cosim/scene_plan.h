@@ -29,7 +29,7 @@ struct PlannedNode {
   const NodeType* type = nullptr;
   std::unique_ptr<models::Block> block;
   std::string topic;                    // "<name>/<suffix>"
-  std::vector<int> published_outputs;   // block output index of each topic field
+  std::vector<int> published_outputs;   // block output index of each topic field, -1: not computed (NaN)
   std::vector<InboundEdge> inputs;
   int subscriber_count = 0;             // participants that read `topic`
   const std::string& name() const { return spec->name; }

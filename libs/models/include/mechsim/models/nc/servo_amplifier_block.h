@@ -71,6 +71,9 @@ struct ServoAmplifierParams {
   double sample_time = 0.0;              // T [s]; 0 = continuous
   CurrentLimitParams current_limit;
   SetpointSource setpoint_source = SetpointSource::internal;
+  // Where the position is measured: on the spindle (the CNC 200's indirect system, input
+  // spindle_angle) or on the motor shaft (input motor_angle: a motor bench without slide).
+  bool measure_on_motor = false;
   SetpointProfile setpoint;              // used with SetpointSource::internal
 };
 
