@@ -52,15 +52,6 @@ std::string hex_id(std::uint64_t id) {
   return buf;
 }
 
-// A Fast DDS process killed mid-run leaves its shared-memory segments in /dev/shm.
-// `fastdds shm clean` (fastdds-tools) removes those whose owner is gone, and only those, so
-// concurrent runs keep theirs.
-void clean_fastdds_shared_memory() {
-  if (std::system("command -v fastdds >/dev/null 2>&1") != 0) return;
-  if (std::system("fastdds shm clean >/dev/null 2>&1") != 0)
-    std::fprintf(stderr, "mechsim: 'fastdds shm clean' failed; stale segments may remain in /dev/shm\n");
-}
-
 struct NodeWatch {
   transport::StatusMessage last;
   bool seen = false;
@@ -303,9 +294,6 @@ RunOutcome Run::run_nodes() {
     abort.command = transport::ControlCommand::abort;
     control_->write(abort);
     processes_.stop_all(2.0);
-    bool fastdds = scene_.vendor == "fastdds";
-    for (const auto& p : scene_.participants) fastdds = fastdds || p.vendor == "fastdds";
-    if (fastdds) clean_fastdds_shared_memory();
   }
   return out;
 }
@@ -417,6 +405,16 @@ int Run::execute() {
   std::fprintf(stderr, "mechsim: scene '%s', run %s, domain %d, %zu nodes, folder %s\n", scene_.name.c_str(),
                hex_id(run_id_).c_str(), domain_, plan_.nodes().size(), run_dir_.c_str());
   RunOutcome out = run_nodes();
+  bool fastdds = scene_.vendor == "fastdds";
+  for (const auto& p : scene_.participants) fastdds = fastdds || p.vendor == "fastdds";
+  if (!out.ok && fastdds) {
+    // A killed Fast DDS node leaves shared-memory segments behind: remove them once this
+    // process's own participant is gone too.
+    status_.reset();
+    control_.reset();
+    participant_.reset();
+    transport::clean_up_domain(domain_);
+  }
   json summary = summarise(out);
 
   if (out.ok) {
@@ -468,7 +466,10 @@ int Run::execute() {
     summary["signals"] = signals;
     const SeriesLookup reference_lookup = reference_series;
     summary["report"] = report_figures(scene_, t, cosim_series, &reference_lookup);
-    summary["reference"] = {{"rtol", ref.rtol}, {"wall_time_s", ref.wall_time_s}, {"solver", solver_stats_json(ref.stats)}};
+    json ref_events = json::object();
+    for (const auto& e : ref.events) ref_events[e.kind] = ref_events.value(e.kind, 0) + 1;
+    summary["reference"] = {{"rtol", ref.rtol}, {"wall_time_s", ref.wall_time_s}, {"solver", solver_stats_json(ref.stats)},
+                            {"event_counts", ref_events}};
     tools::write_csv(run_dir_ + "/signals.csv", csv_header, csv_columns);
     summary["files"] = {{"signals_csv", run_dir_ + "/signals.csv"}};
     if (opt_.plots && !figure.panels.empty()) {
@@ -502,7 +503,9 @@ int Run::execute() {
     if (!summary["events"].empty()) {
       std::map<std::string, int> counts;
       for (const auto& e : summary["events"]) ++counts[e["node"].get<std::string>() + "." + e.value("kind", "?")];
-      for (const auto& [kind, n] : counts) std::printf("  events: %d x %s (details in the summary JSON)\n", n, kind.c_str());
+      for (const auto& [kind, n] : counts)
+        std::printf("  events: %d x %s (reference: %d; details in the summary JSON)\n", n, kind.c_str(),
+                    summary["reference"]["event_counts"].value(kind, 0));
     }
     std::printf("  run folder: %s\n", run_dir_.c_str());
     return 0;

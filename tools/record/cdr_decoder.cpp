@@ -9,6 +9,7 @@
 #include <cstring>
 #include <limits>
 
+#include "idl_schema.h"
 #include "mechsim/transport/topic_types.h"
 
 namespace mechsim::recorder {
@@ -29,28 +30,10 @@ std::vector<MessageLayout> make_layouts() {
       l.fields.push_back({f.name, f.kind == transport::FieldKind::boolean ? CdrKind::boolean : CdrKind::f64});
     layouts.push_back(std::move(l));
   }
-  // Mirrors idl/control.idl (long = 32 bits).
-  layouts.push_back({"mechsim::msg::Control",
-                     "control.idl",
-                     {{"command", CdrKind::i32},
-                      {"end_time", CdrKind::f64},
-                      {"macro_step", CdrKind::f64},
-                      {"mode", CdrKind::i32},
-                      {"rtf", CdrKind::f64}}});
-  // Mirrors idl/status.idl (string<64> and string<256> encode like unbounded strings).
-  layouts.push_back({"mechsim::msg::Status",
-                     "status.idl",
-                     {{"node", CdrKind::string},
-                      {"state", CdrKind::i32},
-                      {"wall_time", CdrKind::f64},
-                      {"solver_steps", CdrKind::i64},
-                      {"rhs_evals", CdrKind::i64},
-                      {"error_test_failures", CdrKind::i64},
-                      {"nonlinear_failures", CdrKind::i64},
-                      {"roots_found", CdrKind::i64},
-                      {"last_step_size", CdrKind::f64},
-                      {"last_order", CdrKind::i32},
-                      {"message", CdrKind::string}}});
+  for (const char* name : {"Control", "Status"}) {
+    const std::string file = std::string(name) == "Control" ? "control.idl" : "status.idl";
+    layouts.push_back({"mechsim::msg::" + std::string(name), file, struct_members(idl_files().at(file), name)});
+  }
   return layouts;
 }
 
@@ -88,8 +71,7 @@ class CdrCursor {
   }
 
   bool boolean() {
-    need(1);
-    const auto v = std::to_integer<unsigned>(payload_[pos_++]);
+    const auto v = scalar<std::uint8_t>();
     if (v > 1) throw CdrError("boolean byte " + std::to_string(v) + " at payload offset " + std::to_string(pos_ - 1));
     return v == 1;
   }
@@ -156,9 +138,15 @@ DecodedSample decode_sample(std::span<const std::byte> cdr, const MessageLayout&
   for (const auto& f : layout.fields) {
     switch (f.kind) {
       case CdrKind::f64: s.values.emplace_back(c.scalar<double>()); break;
+      case CdrKind::f32: s.values.emplace_back(static_cast<double>(c.scalar<float>())); break;
       case CdrKind::boolean: s.values.emplace_back(c.boolean()); break;
+      case CdrKind::octet: s.values.emplace_back(static_cast<std::uint64_t>(c.scalar<std::uint8_t>())); break;
+      case CdrKind::i16: s.values.emplace_back(static_cast<std::int64_t>(c.scalar<std::int16_t>())); break;
+      case CdrKind::u16: s.values.emplace_back(static_cast<std::uint64_t>(c.scalar<std::uint16_t>())); break;
       case CdrKind::i32: s.values.emplace_back(static_cast<std::int64_t>(c.scalar<std::int32_t>())); break;
+      case CdrKind::u32: s.values.emplace_back(static_cast<std::uint64_t>(c.scalar<std::uint32_t>())); break;
       case CdrKind::i64: s.values.emplace_back(c.scalar<std::int64_t>()); break;
+      case CdrKind::u64: s.values.emplace_back(c.scalar<std::uint64_t>()); break;
       case CdrKind::string: s.values.emplace_back(c.string()); break;
     }
   }
@@ -169,6 +157,7 @@ double as_number(const FieldValue& v) {
   if (const auto* d = std::get_if<double>(&v)) return *d;
   if (const auto* b = std::get_if<bool>(&v)) return *b ? 1.0 : 0.0;
   if (const auto* i = std::get_if<std::int64_t>(&v)) return static_cast<double>(*i);
+  if (const auto* u = std::get_if<std::uint64_t>(&v)) return static_cast<double>(*u);
   return std::numeric_limits<double>::quiet_NaN();
 }
 
@@ -181,6 +170,7 @@ std::string to_text(const FieldValue& v) {
   }
   if (const auto* b = std::get_if<bool>(&v)) return *b ? "true" : "false";
   if (const auto* i = std::get_if<std::int64_t>(&v)) return std::to_string(*i);
+  if (const auto* u = std::get_if<std::uint64_t>(&v)) return std::to_string(*u);
   return std::get<std::string>(v);
 }
 

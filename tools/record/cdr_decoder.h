@@ -4,9 +4,10 @@
 // followed by scalar members (and, in Status, bounded strings). Its plain CDR encoding is
 // the 4-byte encapsulation header (representation id, options) and then the members in
 // order, each aligned to its size relative to the start of the payload (the byte after the
-// encapsulation header): XCDR1 aligns 8-byte members to 8, XCDR2 to 4. Booleans take one
-// byte, long 4, long long 8, a string a uint32 length (NUL included), its bytes and the NUL.
-// @final structs have no member headers in either version.
+// encapsulation header): XCDR1 aligns 8-byte members to 8, XCDR2 to 4. Booleans and octets
+// take one byte, short 2, long and float 4, long long and double 8, a string a uint32
+// length (NUL included), its bytes and the NUL. @final structs have no member headers in
+// either version.
 #pragma once
 
 #include <cstddef>
@@ -22,7 +23,7 @@
 
 namespace mechsim::recorder {
 
-enum class CdrKind { f64, boolean, i32, i64, string };
+enum class CdrKind { f64, f32, boolean, octet, i16, u16, i32, u32, i64, u64, string };
 
 struct CdrField {
   std::string name;
@@ -38,13 +39,14 @@ struct MessageLayout {
 };
 
 // The layouts of every type mechsim publishes: the data types built from the field lists
-// of transport/topic_types.h (f64 -> double, boolean -> boolean), Control and Status
-// mirrored from idl/control.idl and idl/status.idl.
+// of transport/topic_types.h (f64 -> double, boolean -> boolean); Control and Status,
+// which have no such list, parsed from the IDL text compiled in (idl_schema.h), so that a
+// member added to idl/control.idl or idl/status.idl is decoded without a change here.
 const std::vector<MessageLayout>& all_layouts();
 // By fully scoped or short name; nullptr when unknown.
 const MessageLayout* find_layout(std::string_view type_name);
 
-using FieldValue = std::variant<double, bool, std::int64_t, std::string>;
+using FieldValue = std::variant<double, bool, std::int64_t, std::uint64_t, std::string>;
 
 struct DecodedSample {
   transport::SampleHeader header;

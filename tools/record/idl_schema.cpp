@@ -26,7 +26,62 @@ const std::string& file_text(const std::string& name) {
   return it->second;
 }
 
+std::string trimmed(const std::string& s) {
+  const auto a = s.find_first_not_of(" \t\r");
+  if (a == std::string::npos) return "";
+  return s.substr(a, s.find_last_not_of(" \t\r") - a + 1);
+}
+
+CdrKind kind_of(const std::string& type, const std::string& member) {
+  if (type == "double") return CdrKind::f64;
+  if (type == "float") return CdrKind::f32;
+  if (type == "boolean") return CdrKind::boolean;
+  if (type == "octet" || type == "uint8") return CdrKind::octet;
+  if (type == "short" || type == "int16") return CdrKind::i16;
+  if (type == "unsigned short" || type == "uint16") return CdrKind::u16;
+  if (type == "long" || type == "int32") return CdrKind::i32;
+  if (type == "unsigned long" || type == "uint32") return CdrKind::u32;
+  if (type == "long long" || type == "int64") return CdrKind::i64;
+  if (type == "unsigned long long" || type == "uint64") return CdrKind::u64;
+  if (type == "string" || type.rfind("string<", 0) == 0) return CdrKind::string;
+  throw std::logic_error("IDL member '" + member + "' has type '" + type + "', which the recorder cannot decode");
+}
+
 }  // namespace
+
+std::vector<CdrField> struct_members(const std::string& idl_text, const std::string& name) {
+  std::istringstream in(idl_text);
+  std::string line;
+  bool inside = false;
+  std::vector<CdrField> fields;
+  bool header_seen = false;
+  while (std::getline(in, line)) {
+    line = trimmed(line.substr(0, line.find("//")));
+    if (!inside) {
+      const auto at = line.find("struct " + name);
+      inside = at != std::string::npos && trimmed(line.substr(at + 7 + name.size())).rfind("{", 0) == 0;
+      continue;
+    }
+    if (line.rfind("}", 0) == 0) break;
+    if (line.empty()) continue;
+    if (line.back() != ';') throw std::logic_error("struct " + name + ": cannot parse member line '" + line + "'");
+    line.pop_back();
+    const auto space = line.find_last_of(" \t");
+    if (space == std::string::npos) throw std::logic_error("struct " + name + ": cannot parse member line '" + line + "'");
+    const std::string member = trimmed(line.substr(space + 1));
+    std::string type;
+    std::istringstream words(line.substr(0, space));
+    for (std::string word; words >> word;) type += (type.empty() ? "" : " ") + word;
+    if (!header_seen) {
+      if (type != "Header") throw std::logic_error("struct " + name + " does not start with its Header");
+      header_seen = true;
+      continue;
+    }
+    fields.push_back({member, kind_of(type, name + "." + member)});
+  }
+  if (!header_seen) throw std::logic_error("no struct " + name + " (with a Header) in the IDL text");
+  return fields;
+}
 
 std::string schema_text(const MessageLayout& layout) {
   return without_preprocessor_lines(file_text("header.idl")) + without_preprocessor_lines(file_text(layout.idl_file));

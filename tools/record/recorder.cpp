@@ -165,9 +165,7 @@ class RecorderImpl final : public Recorder {
 
   // Subscribes to selected topics of known types that a writer announced since last time.
   void follow_discovery() {
-    std::fprintf(stderr, "DEBUG follow_discovery\n");
     for (const auto& t : participant_->discovered_topics()) {
-      std::fprintf(stderr, "DEBUG discovered %s %s %d\n", t.name.c_str(), t.type_name.c_str(), t.publishers);
       if (t.publishers == 0 || subscriptions_.count(t.name) || !options_.topics.selects(t.name)) continue;
       if (const MessageLayout* layout = find_layout(t.type_name); layout && layout->type_name == t.type_name)
         subscribe(t.name, *layout);

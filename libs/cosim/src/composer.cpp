@@ -205,6 +205,7 @@ ReferenceRun run_reference(ScenePlan& plan, double rtol, double atol) {
   for (long k = 1; k <= n; ++k) {
     const double t = time.start + static_cast<double>(k) * time.step;
     integrator.advance_to(t, no_inputs);
+    for (auto& e : composite.take_event_log()) run.events.push_back(std::move(e));
     sample(t);
   }
   run.stats = integrator.stats();

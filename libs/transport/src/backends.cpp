@@ -32,4 +32,10 @@ std::unique_ptr<Participant> create_participant(const std::string& vendor, int d
   throw std::runtime_error("DDS vendor '" + vendor + "' is not compiled into this build");
 }
 
+void clean_up_domain(int domain_id) {
+#ifdef MECHSIM_HAVE_FASTDDS
+  fastdds::clean_shared_memory(domain_id);
+#endif
+}
+
 }  // namespace mechsim::transport

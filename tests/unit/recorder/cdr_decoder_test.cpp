@@ -87,10 +87,11 @@ TEST(CdrDecoder, Xcdr2AlignsDoublesToFourInBothByteOrders) {
 }
 
 TEST(CdrDecoder, StatusWithStringsAndIntegers) {
-  // XCDR1 LE. node "follower" (length 9 with the NUL) at 24, chars 28..36; state (long)
-  // at 40; wall_time at 48; five long longs 56..88; last_step_size 96; last_order 104;
-  // message length at 108, chars from 112.
-  Buffer b(0x0001, 112 + 5, false);
+  // idl/status.idl, XCDR1 LE. node "follower" (length 9 with the NUL) at 24, chars 28..36;
+  // state (long) at 40; wall_time at 48; five long longs 56..88; last_step_size 96;
+  // last_order 104; lateness_max 112, lateness_p99 120, missed_deadlines 128, rtf_window
+  // 136; message length at 144, chars from 148.
+  Buffer b(0x0001, 148 + 4, false);
   put_header(b);
   b.put_string(24, "follower");
   b.put<std::int32_t>(40, 2);
@@ -98,7 +99,11 @@ TEST(CdrDecoder, StatusWithStringsAndIntegers) {
   for (int i = 0; i < 5; ++i) b.put<std::int64_t>(56 + 8 * i, -(i + 1) * 1000000000000LL);
   b.put<double>(96, 1e-4);
   b.put<std::int32_t>(104, 3);
-  b.put_string(108, "a\"b");
+  b.put<double>(112, 0.5e-3);
+  b.put<double>(120, 0.25e-3);
+  b.put<std::int64_t>(128, 17);
+  b.put<double>(136, 0.97);
+  b.put_string(144, "a\"b");
   const MessageLayout& l = *find_layout("mechsim::msg::Status");
   const DecodedSample s = decode_sample(b.bytes(), l);
   expect_header(s.header);
@@ -109,7 +114,40 @@ TEST(CdrDecoder, StatusWithStringsAndIntegers) {
   EXPECT_EQ(std::get<std::int64_t>(s.values[l.field_index("roots_found")]), -5000000000000LL);
   EXPECT_EQ(std::get<double>(s.values[l.field_index("last_step_size")]), 1e-4);
   EXPECT_EQ(std::get<std::int64_t>(s.values[l.field_index("last_order")]), 3);
+  EXPECT_EQ(std::get<double>(s.values[l.field_index("lateness_max")]), 0.5e-3);
+  EXPECT_EQ(std::get<double>(s.values[l.field_index("lateness_p99")]), 0.25e-3);
+  EXPECT_EQ(std::get<std::int64_t>(s.values[l.field_index("missed_deadlines")]), 17);
+  EXPECT_EQ(std::get<double>(s.values[l.field_index("rtf_window")]), 0.97);
   EXPECT_EQ(std::get<std::string>(s.values[l.field_index("message")]), "a\"b");
+}
+
+TEST(CdrDecoder, OtherScalarKindsAlignToTheirSize) {
+  // A struct of the kinds mechsim does not use yet, as the IDL parser reads them: octet
+  // at 24, short at 26, unsigned short 28, float 32, unsigned long 36, unsigned long long 40.
+  const std::vector<CdrField> fields = struct_members(
+      "module m { @final struct S {\n Header header;\n octet a; short b;\n unsigned short c;\n"
+      " float d; // comment\n unsigned long e;\n unsigned long long f;\n };\n};",
+      "S");
+  ASSERT_EQ(fields.size(), 6u);
+  EXPECT_EQ(fields[2].kind, CdrKind::u16);
+  EXPECT_EQ(fields[5].kind, CdrKind::u64);
+  Buffer b(0x0001, 48, false);
+  put_header(b);
+  b.put<std::uint8_t>(24, 200);
+  b.put<std::int16_t>(26, -300);
+  b.put<std::uint16_t>(28, 60000);
+  b.put<float>(32, 1.5f);
+  b.put<std::uint32_t>(36, 4000000000u);
+  b.put<std::uint64_t>(40, 18000000000000000000ULL);
+  const DecodedSample s = decode_sample(b.bytes(), MessageLayout{"m::S", "", fields});
+  EXPECT_EQ(std::get<std::uint64_t>(s.values[0]), 200u);
+  EXPECT_EQ(std::get<std::int64_t>(s.values[1]), -300);
+  EXPECT_EQ(std::get<std::uint64_t>(s.values[2]), 60000u);
+  EXPECT_EQ(std::get<double>(s.values[3]), 1.5);
+  EXPECT_EQ(std::get<std::uint64_t>(s.values[4]), 4000000000u);
+  EXPECT_EQ(std::get<std::uint64_t>(s.values[5]), 18000000000000000000ULL);
+  EXPECT_THROW(struct_members("struct T {\n Header header;\n sequence<double> x;\n};", "T"), std::logic_error);
+  EXPECT_THROW(struct_members("struct T {\n double x;\n};", "T"), std::logic_error);
 }
 
 TEST(CdrDecoder, RefusesMalformedBuffers) {
@@ -149,6 +187,15 @@ TEST(MessageLayouts, DataTypesMirrorTheTransportFieldLists) {
     }
   }
   EXPECT_EQ(find_layout("CamState"), find_layout("mechsim::msg::CamState"));
+  // The IDL says the same as the transport's field lists.
+  for (const MessageLayout& l : all_layouts()) {
+    const std::vector<CdrField> parsed = struct_members(idl_files().at(l.idl_file), l.type_name.substr(l.type_name.rfind(':') + 1));
+    ASSERT_EQ(parsed.size(), l.fields.size()) << l.type_name;
+    for (std::size_t i = 0; i < parsed.size(); ++i) {
+      EXPECT_EQ(parsed[i].name, l.fields[i].name) << l.type_name;
+      EXPECT_EQ(parsed[i].kind, l.fields[i].kind) << l.type_name << "." << l.fields[i].name;
+    }
+  }
   EXPECT_NE(find_layout("Control"), nullptr);
   EXPECT_EQ(find_layout("Unknown"), nullptr);
 }

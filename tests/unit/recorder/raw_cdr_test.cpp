@@ -78,7 +78,7 @@ TEST_F(RawCdr, EveryDataTypeDecodesToTheValuesTheTypedWriterWrote) {
 
 TEST_F(RawCdr, ControlAndStatusDecodeToWhatWasWritten) {
   auto control = typed_->create_control_writer();
-  control->write({77, transport::ControlCommand::start, 2.5, 1e-3, transport::RunMode::realtime, 0.5});
+  control->write({77, transport::ControlCommand::start, 2.5, 1e-3, transport::RunMode::realtime, 0.5, 123456789012345});
   auto control_reader = raw_->create_reader(transport::kControlTopic, "Control");  // late joiner: transient local
   transport::RawSample s;
   ASSERT_TRUE(wait_until(*raw_, [&] { return control_reader->take(s); }));
@@ -90,6 +90,7 @@ TEST_F(RawCdr, ControlAndStatusDecodeToWhatWasWritten) {
   EXPECT_EQ(std::get<double>(c.values[cl.field_index("macro_step")]), 1e-3);
   EXPECT_EQ(std::get<std::int64_t>(c.values[cl.field_index("mode")]), 1);
   EXPECT_EQ(std::get<double>(c.values[cl.field_index("rtf")]), 0.5);
+  EXPECT_EQ(std::get<std::int64_t>(c.values[cl.field_index("start_wall_ns")]), 123456789012345);
 
   auto status_reader = raw_->create_reader(transport::kStatusTopic, "mechsim::msg::Status");
   auto status = typed_->create_status_writer();
@@ -105,13 +106,15 @@ TEST_F(RawCdr, ControlAndStatusDecodeToWhatWasWritten) {
   m.roots_found = 8;
   m.last_step_size = 3e-5;
   m.last_order = 4;
+  m.lateness_max = 2e-3;
+  m.missed_deadlines = 11;
+  m.rtf_window = 0.875;
   m.message = "diverged: x";
   ASSERT_TRUE(wait_until(*raw_, [&] {
     status->write(m);  // best effort: repeat until one arrives
     return status_reader->take(s);
   }));
   const MessageLayout& sl = *find_layout("Status");
-  for (std::size_t i = 0; i < s.cdr.size(); ++i) std::printf("%02x%s", std::to_integer<int>(s.cdr[i]), i % 16 == 15 ? "\n" : " ");
   DecodedSample d = decode_sample(s.cdr, sl);
   EXPECT_EQ(d.header.step, 9u);
   EXPECT_EQ(d.header.t, 0.009);
@@ -125,6 +128,9 @@ TEST_F(RawCdr, ControlAndStatusDecodeToWhatWasWritten) {
   EXPECT_EQ(std::get<std::int64_t>(d.values[sl.field_index("roots_found")]), 8);
   EXPECT_EQ(std::get<double>(d.values[sl.field_index("last_step_size")]), 3e-5);
   EXPECT_EQ(std::get<std::int64_t>(d.values[sl.field_index("last_order")]), 4);
+  EXPECT_EQ(std::get<double>(d.values[sl.field_index("lateness_max")]), 2e-3);
+  EXPECT_EQ(std::get<std::int64_t>(d.values[sl.field_index("missed_deadlines")]), 11);
+  EXPECT_EQ(std::get<double>(d.values[sl.field_index("rtf_window")]), 0.875);
   EXPECT_EQ(std::get<std::string>(d.values[sl.field_index("message")]), "diverged: x");
 }
 

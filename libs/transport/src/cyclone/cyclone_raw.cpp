@@ -14,6 +14,7 @@
 #include <bit>
 #include <cstring>
 #include <map>
+#include <mutex>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -250,11 +251,10 @@ class CycloneRawParticipant final : public RawParticipant {
     check(dds_waitset_attach(waitset_, guard_, guard_), "attach guard condition");
     for (dds_entity_t builtin : {DDS_BUILTIN_TOPIC_DCPSPUBLICATION, DDS_BUILTIN_TOPIC_DCPSSUBSCRIPTION}) {
       dds_entity_t r = check(dds_create_reader(participant_, builtin, nullptr, nullptr), "create discovery reader");
-      // Wakes wait() when an endpoint appears or goes (new, not yet read samples).
-      dds_entity_t cond = check(dds_create_readcondition(r, DDS_NOT_READ_SAMPLE_STATE | DDS_ANY_VIEW_STATE | DDS_ANY_INSTANCE_STATE),
-                                "create discovery condition");
+      // Wakes wait() when an endpoint appears or goes; poll_discovery() takes the samples.
+      dds_entity_t cond = check(dds_create_readcondition(r, DDS_ANY_STATE), "create discovery condition");
       check(dds_waitset_attach(waitset_, cond, r), "attach discovery condition");
-      discovery_.push_back({r, cond});
+      discovery_readers_.push_back(r);
     }
   }
   ~CycloneRawParticipant() override { dds_delete(participant_); }
@@ -282,27 +282,15 @@ class CycloneRawParticipant final : public RawParticipant {
   }
 
   std::vector<DiscoveredTopic> discovered_topics() override {
+    std::lock_guard lock(discovery_mutex_);
+    poll_discovery();
     std::map<std::pair<std::string, std::string>, DiscoveredTopic> topics;
-    for (std::size_t k = 0; k < discovery_.size(); ++k) {
-      const bool publications = k == 0;
-      // mechsim scenes hold a few dozen endpoints; 1024 per kind is far beyond any of them.
-      constexpr std::size_t kMax = 1024;
-      std::vector<void*> buf(kMax, nullptr);
-      std::vector<dds_sample_info_t> info(kMax);
-      // Alive instances only: one per live endpoint (a deleted endpoint's instance is disposed).
-      dds_return_t n = dds_read_mask(discovery_[k].reader, buf.data(), info.data(), kMax, kMax,
-                                     DDS_ANY_SAMPLE_STATE | DDS_ANY_VIEW_STATE | DDS_ALIVE_INSTANCE_STATE);
-      if (n < 0) fail("read discovery data", n);
-      for (dds_return_t i = 0; i < n; ++i) {
-        if (!info[i].valid_data) continue;
-        const auto* e = static_cast<const dds_builtintopic_endpoint_t*>(buf[i]);
-        if (std::memcmp(&e->participant_key, &own_guid_, sizeof own_guid_) == 0) continue;
-        auto& t = topics[{e->topic_name, e->type_name}];
-        t.name = e->topic_name;
-        t.type_name = e->type_name;
-        ++(publications ? t.publishers : t.subscribers);
-      }
-      if (n > 0) dds_return_loan(discovery_[k].reader, buf.data(), n);
+    for (const auto& [key, e] : endpoints_) {
+      if (e.own) continue;
+      auto& t = topics[{e.topic, e.type}];
+      t.name = e.topic;
+      t.type_name = e.type;
+      ++(key.first == 0 ? t.publishers : t.subscribers);
     }
     std::vector<DiscoveredTopic> out;
     for (auto& [key, t] : topics) out.push_back(std::move(t));
@@ -318,10 +306,10 @@ class CycloneRawParticipant final : public RawParticipant {
         bool was = false;
         dds_take_guardcondition(guard_, &was);
       }
-      for (const auto& d : discovery_)
-        if (triggered[i] == static_cast<dds_attach_t>(d.reader)) {
-          mark_read(d.reader);
-          ++discovery_events_;
+      for (dds_entity_t r : discovery_readers_)
+        if (triggered[i] == static_cast<dds_attach_t>(r)) {
+          std::lock_guard lock(discovery_mutex_);
+          if (poll_discovery()) ++discovery_events_;
         }
     }
     return n > 0;
@@ -331,23 +319,37 @@ class CycloneRawParticipant final : public RawParticipant {
   std::uint64_t discovery_events() const override { return discovery_events_; }
 
  private:
-  struct Discovery {
-    dds_entity_t reader;
-    dds_entity_t condition;
+  struct Endpoint {
+    std::string topic, type;
+    bool own = false;  // of this participant
   };
 
-  // Reading the new discovery samples resets their condition (discovered_topics() reads
-  // them all again whenever asked).
-  static void mark_read(dds_entity_t reader) {
-    std::array<void*, 64> buf{};
-    std::array<dds_sample_info_t, 64> info{};
-    for (;;) {
-      dds_return_t n = dds_read_mask(reader, buf.data(), info.data(), buf.size(), buf.size(),
-                                     DDS_NOT_READ_SAMPLE_STATE | DDS_ANY_VIEW_STATE | DDS_ANY_INSTANCE_STATE);
-      if (n <= 0) return;
-      dds_return_loan(reader, buf.data(), n);
-      if (static_cast<std::size_t>(n) < buf.size()) return;
+  // Takes what the discovery readers learned since the last call into endpoints_: a live
+  // endpoint is added (keyed by its instance), a gone one (disposed or unregistered)
+  // removed. One sample per call: Cyclone 0.10 loans of more than one built-in sample
+  // proved fragile (heap corruption when the loan size changes between calls).
+  bool poll_discovery() {
+    bool changed = false;
+    for (std::size_t k = 0; k < discovery_readers_.size(); ++k) {
+      for (;;) {
+        void* buf[1] = {nullptr};
+        dds_sample_info_t info;
+        const dds_return_t n = dds_take(discovery_readers_[k], buf, &info, 1, 1);
+        if (n < 0) fail("take discovery data", n);
+        if (n == 0) break;
+        const auto key = std::make_pair(static_cast<int>(k), info.instance_handle);
+        if (info.valid_data && info.instance_state == DDS_IST_ALIVE) {
+          const auto* e = static_cast<const dds_builtintopic_endpoint_t*>(buf[0]);
+          endpoints_[key] = {e->topic_name ? e->topic_name : "", e->type_name ? e->type_name : "",
+                             std::memcmp(&e->participant_key, &own_guid_, sizeof own_guid_) == 0};
+        } else if (info.instance_state != DDS_IST_ALIVE) {
+          endpoints_.erase(key);
+        }
+        dds_return_loan(discovery_readers_[k], buf, n);
+        changed = true;
+      }
     }
+    return changed;
   }
 
   // The topic entity for (name, type); throws std::invalid_argument for an unknown type or
@@ -371,7 +373,9 @@ class CycloneRawParticipant final : public RawParticipant {
   dds_guid_t own_guid_{};
   dds_entity_t waitset_ = 0;
   dds_entity_t guard_ = 0;
-  std::vector<Discovery> discovery_;
+  std::vector<dds_entity_t> discovery_readers_;  // DCPSPublication, DCPSSubscription
+  std::mutex discovery_mutex_;
+  std::map<std::pair<int, dds_instance_handle_t>, Endpoint> endpoints_;  // (0 writer / 1 reader, instance)
   std::atomic<std::uint64_t> discovery_events_{0};
   std::map<std::string, std::pair<dds_entity_t, std::string>> topics_;  // name -> (topic, scoped type)
 };

@@ -2,8 +2,14 @@
 // Cyclone backend (participant.h, docs/dds.md), so the two interoperate topic by topic.
 #include "fastdds_participant.h"
 
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <condition_variable>
+#include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <map>
 #include <mutex>
 #include <stdexcept>
@@ -115,6 +121,7 @@ struct FastCore {
   dds::Publisher* publisher = nullptr;
   dds::Subscriber* subscriber = nullptr;
   std::map<std::string, dds::Topic*> topics;
+  std::string shared_memory_dir;  // data-sharing segments of this domain ("" = OS default)
   WakeSignal signal;
   DataListener listener{signal};
 
@@ -122,6 +129,15 @@ struct FastCore {
     if (participant == nullptr) return;
     participant->delete_contained_entities();
     dds::DomainParticipantFactory::get_instance()->delete_participant(participant);
+  }
+
+  // Data sharing (where the profile leaves it on) keeps its segments in the domain's own
+  // folder, which the launcher removes after a run: `fastdds shm clean` knows only the
+  // transport's segments, and a killed writer's pool would stay in /dev/shm for good.
+  void place_data_sharing(dds::DataSharingQosPolicy& policy) const {
+    if (shared_memory_dir.empty()) return;
+    if (policy.kind() == dds::AUTO) policy.automatic(shared_memory_dir);
+    else if (policy.kind() == dds::ON) policy.on(shared_memory_dir);
   }
 
   dds::Topic* topic(const std::string& name, dds::TopicDataType* type_support) {
@@ -145,6 +161,7 @@ struct FastCore {
     // writer then stalls for up to 3 s every 400 steps (measured over UDP, and with Cyclone
     // readers). A 10 ms period keeps the history short; it costs nothing once all is acked.
     qos.reliable_writer_qos().times.heartbeatPeriod = Duration_t(0, 10'000'000);
+    place_data_sharing(qos.data_sharing());
     return check(publisher->create_datawriter(t, qos), "create writer on " + topic_name);
   }
 
@@ -152,6 +169,7 @@ struct FastCore {
     dds::Topic* t = topic(topic_name, type_support);
     dds::DataReaderQos qos = subscriber->get_default_datareader_qos();
     qos_setter(qos.reliability(), qos.history(), qos.durability());
+    place_data_sharing(qos.data_sharing());
     return check(subscriber->create_datareader(t, qos, &listener, dds::StatusMask::data_available()),
                  "create reader on " + topic_name);
   }
@@ -336,6 +354,18 @@ class FastStatusReader final : public StatusReader, Endpoint {
 
 }  // namespace
 
+std::string data_sharing_dir(int domain_id) {
+  return "/dev/shm/mechsim-fastdds-" + std::to_string(::getuid()) + "-d" + std::to_string(domain_id);
+}
+
+void clean_shared_memory(int domain_id) {
+  std::error_code ec;
+  std::filesystem::remove_all(data_sharing_dir(domain_id), ec);
+  // The transport's segments (fastrtps_*): removed by fastdds-tools when their owner is gone.
+  if (std::system("command -v fastdds >/dev/null 2>&1") == 0 && std::system("fastdds shm clean >/dev/null 2>&1") != 0)
+    std::fprintf(stderr, "mechsim: 'fastdds shm clean' failed; stale Fast DDS segments may remain in /dev/shm\n");
+}
+
 FastParticipant::FastParticipant(int domain_id) : core_(std::make_shared<FastCore>()) {
   auto* factory = dds::DomainParticipantFactory::get_instance();
   // PARTICIPANT_QOS_DEFAULT: the default profile of FASTRTPS_DEFAULT_PROFILES_FILE if set.
@@ -344,6 +374,8 @@ FastParticipant::FastParticipant(int domain_id) : core_(std::make_shared<FastCor
                                  (std::getenv("FASTRTPS_DEFAULT_PROFILES_FILE")
                                       ? std::string(" (profiles from ") + std::getenv("FASTRTPS_DEFAULT_PROFILES_FILE") + ")"
                                       : std::string()));
+  const std::string dir = data_sharing_dir(domain_id);
+  if (::mkdir(dir.c_str(), 0700) == 0 || errno == EEXIST) core_->shared_memory_dir = dir;
   core_->publisher = check(core_->participant->create_publisher(dds::PUBLISHER_QOS_DEFAULT), "create publisher");
   core_->subscriber = check(core_->participant->create_subscriber(dds::SUBSCRIBER_QOS_DEFAULT), "create subscriber");
 }

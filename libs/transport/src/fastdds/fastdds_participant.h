@@ -1,12 +1,21 @@
 #pragma once
 
 #include <memory>
+#include <string>
 
 #include "mechsim/transport/participant.h"
 
 namespace mechsim::transport::fastdds {
 
 struct FastCore;
+
+// Where the participants of a domain keep their data-sharing segments (a folder in /dev/shm
+// per user and domain).
+std::string data_sharing_dir(int domain_id);
+// After a run of `domain_id` whose processes have all exited: removes the domain's
+// data-sharing folder and runs `fastdds shm clean` (if installed) for the transport's
+// segments of processes that are gone.
+void clean_shared_memory(int domain_id);
 
 // One Fast DDS DomainParticipant (C++ DDS API of Fast DDS 2.9) with one publisher and one
 // subscriber. Transports come from the XML profile in FASTRTPS_DEFAULT_PROFILES_FILE, which

@@ -62,6 +62,7 @@ class CompositeBlock final : public models::Block {
 struct ReferenceRun {
   OutputLog log;             // t and every "<participant>.<output>" at every macro step
   solve::SolverStats stats;
+  std::vector<models::BlockEvent> events;  // kinds prefixed by the participant ("follower.lift_off")
   double wall_time_s = 0.0;
   double rtol = 0.0;
 };

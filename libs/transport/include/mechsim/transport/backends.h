@@ -16,4 +16,8 @@ std::vector<std::string> available_vendors();
 // vendor when it is not compiled in or the participant cannot be created.
 std::unique_ptr<Participant> create_participant(const std::string& vendor, int domain_id);
 
+// Removes what the backends may leave on this host after a run on `domain_id`, once all of
+// its processes have exited, killed ones included (Fast DDS: shared-memory segments).
+void clean_up_domain(int domain_id);
+
 }  // namespace mechsim::transport
