@@ -50,28 +50,34 @@ CdrKind kind_of(const std::string& type, const std::string& member) {
 }  // namespace
 
 std::vector<CdrField> struct_members(const std::string& idl_text, const std::string& name) {
+  // The text without comments, then the body between "struct <name> {" and its "}".
   std::istringstream in(idl_text);
-  std::string line;
-  bool inside = false;
+  std::string text;
+  for (std::string line; std::getline(in, line);) text += line.substr(0, line.find("//")) + "\n";
+  std::size_t open = std::string::npos;
+  for (std::size_t at = text.find("struct " + name); at != std::string::npos; at = text.find("struct " + name, at + 1)) {
+    const std::size_t after = at + 7 + name.size();
+    const std::size_t brace = text.find_first_not_of(" \t\r\n", after);
+    if (brace != std::string::npos && text[brace] == '{') {
+      open = brace;
+      break;
+    }
+  }
+  if (open == std::string::npos) throw std::logic_error("no struct " + name + " in the IDL text");
+  const std::size_t close = text.find('}', open);
+  if (close == std::string::npos) throw std::logic_error("struct " + name + " is not closed");
+  std::istringstream body(text.substr(open + 1, close - open - 1));
   std::vector<CdrField> fields;
   bool header_seen = false;
-  while (std::getline(in, line)) {
-    line = trimmed(line.substr(0, line.find("//")));
-    if (!inside) {
-      const auto at = line.find("struct " + name);
-      inside = at != std::string::npos && trimmed(line.substr(at + 7 + name.size())).rfind("{", 0) == 0;
-      continue;
-    }
-    if (line.rfind("}", 0) == 0) break;
-    if (line.empty()) continue;
-    if (line.back() != ';') throw std::logic_error("struct " + name + ": cannot parse member line '" + line + "'");
-    line.pop_back();
-    const auto space = line.find_last_of(" \t");
-    if (space == std::string::npos) throw std::logic_error("struct " + name + ": cannot parse member line '" + line + "'");
-    const std::string member = trimmed(line.substr(space + 1));
+  for (std::string declaration; std::getline(body, declaration, ';');) {
+    std::istringstream words(declaration);
+    std::vector<std::string> w;
+    for (std::string word; words >> word;) w.push_back(word);
+    if (w.empty()) continue;
+    if (w.size() < 2) throw std::logic_error("struct " + name + ": cannot parse member '" + trimmed(declaration) + "'");
+    const std::string member = w.back();
     std::string type;
-    std::istringstream words(line.substr(0, space));
-    for (std::string word; words >> word;) type += (type.empty() ? "" : " ") + word;
+    for (std::size_t i = 0; i + 1 < w.size(); ++i) type += (i ? " " : "") + w[i];
     if (!header_seen) {
       if (type != "Header") throw std::logic_error("struct " + name + " does not start with its Header");
       header_seen = true;
@@ -79,7 +85,7 @@ std::vector<CdrField> struct_members(const std::string& idl_text, const std::str
     }
     fields.push_back({member, kind_of(type, name + "." + member)});
   }
-  if (!header_seen) throw std::logic_error("no struct " + name + " (with a Header) in the IDL text");
+  if (!header_seen) throw std::logic_error("struct " + name + " has no Header");
   return fields;
 }
 
