@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
-#include "run_command.h"
+#include "run_fixture.h"
 
 namespace mechsim::testing {
 namespace {
@@ -17,36 +17,13 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-const std::string kMechsim = std::string(MECHSIM_BIN_DIR) + "/mechsim";
-const std::string kCamPress = std::string(MECHSIM_SOURCE_DIR) + "/config/scenes/cam_press.yaml";
+const std::string kCamPress = scene_path("cam_press.yaml");
 
-class Launch : public ::testing::Test {
+class Launch : public RunFolderTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("mechsim-launch-" + std::string(info->name()) + "-" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    // Whatever happened, nothing of this test may still run.
-    EXPECT_TRUE(processes_mentioning(dir_.string()).empty()) << "processes left behind";
-    if (!HasFailure()) fs::remove_all(dir_);
-  }
   std::vector<std::string> launch_args(const std::string& tag, std::vector<std::string> extra = {}) const {
-    std::vector<std::string> a{kMechsim, "launch", kCamPress, "--runs-dir", (dir_ / tag).string(),
-                               "--json", (dir_ / (tag + ".json")).string(), "--no-plot", "--no-progress"};
-    a.insert(a.end(), extra.begin(), extra.end());
-    return a;
+    return RunFolderTest::launch_args(kCamPress, tag, std::move(extra));
   }
-  json summary(const std::string& tag) const { return json::parse(slurp((dir_ / (tag + ".json")).string())); }
-  // The single run folder under <dir>/<tag>.
-  fs::path run_folder(const std::string& tag) const {
-    for (const auto& e : fs::directory_iterator(dir_ / tag)) return e.path();
-    return {};
-  }
-  std::string log(const std::string& tag) const { return (dir_ / (tag + ".log")).string(); }
-  fs::path dir_;
 };
 
 TEST_F(Launch, CamPressRunsDistributedAndReproducesTheReference) {

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
-#include "run_command.h"
+#include "run_fixture.h"
 
 namespace mechsim::testing {
 namespace {
@@ -14,29 +14,12 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-const std::string kMechsim = std::string(MECHSIM_BIN_DIR) + "/mechsim";
-std::string scene(const std::string& name) { return std::string(MECHSIM_SOURCE_DIR) + "/config/scenes/" + name; }
-
-class NcLoop : public ::testing::Test {
+class NcLoop : public RunFolderTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("mechsim-nc-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
-                                        "-" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    EXPECT_TRUE(processes_mentioning(dir_.string()).empty()) << "processes left behind";
-    if (!HasFailure()) fs::remove_all(dir_);
-  }
   CommandResult launch(const std::string& scene_file, std::vector<std::string> extra = {}) {
-    std::vector<std::string> a{kMechsim, "launch", scene(scene_file), "--runs-dir", (dir_ / "runs").string(),
-                               "--json", (dir_ / "summary.json").string(), "--no-plot", "--no-progress"};
-    a.insert(a.end(), extra.begin(), extra.end());
-    return run(a, (dir_ / "launch.log").string(), 180);
+    return run(launch_args(scene_path(scene_file), "nc", std::move(extra)), log("nc"), 180);
   }
-  json summary() const { return json::parse(slurp((dir_ / "summary.json").string())); }
-  fs::path dir_;
+  json summary() const { return RunFolderTest::summary("nc"); }
 };
 
 const json& figure(const json& s, const std::string& stat, const std::string& signal) {

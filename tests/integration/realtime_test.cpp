@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
-#include "run_command.h"
+#include "run_fixture.h"
 
 namespace mechsim::testing {
 namespace {
@@ -13,33 +13,12 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-const std::string kMechsim = std::string(MECHSIM_BIN_DIR) + "/mechsim";
-const std::string kScene = std::string(MECHSIM_SOURCE_DIR) + "/config/scenes/cam_press_rt.yaml";
-
-class Realtime : public ::testing::Test {
+class Realtime : public RunFolderTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("mechsim-rt-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
-                                        "-" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    EXPECT_TRUE(processes_mentioning(dir_.string()).empty()) << "processes left behind";
-    if (!HasFailure()) fs::remove_all(dir_);
-  }
   CommandResult launch(const std::string& tag, std::vector<std::string> extra) {
-    std::vector<std::string> a{kMechsim, "launch", kScene, "--runs-dir", (dir_ / tag).string(),
-                               "--json", (dir_ / (tag + ".json")).string(), "--no-plot", "--no-progress"};
-    a.insert(a.end(), extra.begin(), extra.end());
-    return run(a, (dir_ / (tag + ".log")).string(), 60);
+    return run(launch_args(scene_path("cam_press_rt.yaml"), tag, std::move(extra)), log(tag), 60);
   }
-  json summary(const std::string& tag) const { return json::parse(slurp((dir_ / (tag + ".json")).string())); }
-  fs::path folder(const std::string& tag) const {
-    for (const auto& e : fs::directory_iterator(dir_ / tag)) return e.path();
-    return {};
-  }
-  fs::path dir_;
+  std::filesystem::path folder(const std::string& tag) const { return run_folder(tag); }
 };
 
 TEST_F(Realtime, PacedAndLockStepRunsGiveBitIdenticalOutputs) {
