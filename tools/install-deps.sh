@@ -6,6 +6,8 @@ set -euo pipefail
 packages=(
   cmake g++ make pkg-config git           # build
   cyclonedds-dev cyclonedds-tools         # DDS (C API, idlc, ddsperf)
+  libfastrtps-dev fastddsgen              # Fast DDS 2.9 (C++ API) and its IDL generator
+  default-jre-headless fastdds-tools      # fastddsgen runs on Java; `fastdds shm clean`
   libsundials-dev                         # CVODE / ARKODE 6.4
   libeigen3-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev
   libgtest-dev libbenchmark-dev           # tests, benchmarks

@@ -407,14 +407,8 @@ int Run::execute() {
   RunOutcome out = run_nodes();
   bool fastdds = scene_.vendor == "fastdds";
   for (const auto& p : scene_.participants) fastdds = fastdds || p.vendor == "fastdds";
-  if (!out.ok && fastdds) {
-    // A killed Fast DDS node leaves shared-memory segments behind: remove them once this
-    // process's own participant is gone too.
-    status_.reset();
-    control_.reset();
-    participant_.reset();
-    transport::clean_up_domain(domain_);
-  }
+  // A killed Fast DDS node leaves its shared-memory segments in /dev/shm.
+  if (!out.ok && fastdds) transport::clean_up_after_killed_processes();
   json summary = summarise(out);
 
   if (out.ok) {

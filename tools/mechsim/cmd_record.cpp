@@ -98,7 +98,16 @@ int record(const RecordArgs& a) {
   }
   recorder::RecordOptions o;
   o.file = a.output;
-  o.topics.names = a.topics;
+  // "name:Type" subscribes at once, before any writer of the topic exists.
+  for (const auto& t : a.topics) {
+    const auto colon = t.find(':');
+    if (colon == std::string::npos || t.compare(colon, 2, "::") == 0) {
+      o.topics.names.push_back(t);
+    } else {
+      o.topics.names.push_back(t.substr(0, colon));
+      o.topic_types[t.substr(0, colon)] = t.substr(colon + 1);
+    }
+  }
   o.topics.regex = a.regex;
   o.sync = a.data_sync ? record::SyncMode::data_sync : record::SyncMode::flush;
   std::unique_ptr<recorder::Recorder> rec;
@@ -149,7 +158,10 @@ void add_record_command(CLI::App& app, int& exit_code) {
   auto* cmd = app.add_subcommand("record", "Record DDS topics of a domain into an MCAP file (until Ctrl-C), or --recover one");
   auto a = std::make_shared<RecordArgs>();
   cmd->add_option("--domain", a->domain, "DDS domain id of the run (the launcher prints it)");
-  cmd->add_option("--topics", a->topics, "topics to record, comma separated (default: every mechsim topic)")->delimiter(',');
+  cmd->add_option("--topics", a->topics,
+                  "topics to record, comma separated (default: every mechsim topic); NAME:TYPE (e.g. cam/state:CamState) "
+                  "subscribes before the topic's writer appears")
+      ->delimiter(',');
   cmd->add_option("--regex", a->regex, "record the topics whose whole name matches this regex")->excludes("--topics");
   cmd->add_option("-o,--output", a->output, "the MCAP file to write (with --recover: the rebuilt file)");
   cmd->add_option("--compression", a->compression, "chunk compression")

@@ -172,13 +172,17 @@ class RecorderImpl final : public Recorder {
     }
   }
 
-  void drain() {
+  // Returns how many samples it wrote.
+  std::uint64_t drain() {
+    std::uint64_t n = 0;
     for (auto& [name, s] : subscriptions_) {
       while (s->reader->take(sample_)) {
         writer_->write(s->channel, s->sequence++, now_ns(), simulated_ns(sample_.header.t), sample_.cdr);
         s->samples.fetch_add(1, std::memory_order_relaxed);
+        ++n;
       }
     }
+    return n;
   }
 
   void update_lost() {
@@ -197,12 +201,13 @@ class RecorderImpl final : public Recorder {
           last_rescan = SteadyClock::now();
           follow_discovery();
         }
-        drain();
+        const bool busy = drain() > 0;
         if (SteadyClock::now() - last_housekeeping >= options_.flush_period) {
           writer_->flush_if_due();
           update_lost();
           last_housekeeping = SteadyClock::now();
         }
+        if (busy && options_.batch_period.count() > 0) std::this_thread::sleep_for(options_.batch_period);
       }
       // What the readers still hold: writers that finished waited for our acknowledgement,
       // so everything they wrote is here.

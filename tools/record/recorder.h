@@ -47,6 +47,11 @@ struct RecordOptions {
   // How often the recording thread wakes without data to close a due chunk
   // (McapWriter::flush_if_due) and look at discovery.
   std::chrono::milliseconds flush_period{100};
+  // After taking what its readers held, the recording thread rests this long before it
+  // looks again, so that it wakes a few hundred times a second rather than once per
+  // sample (the samples wait in the readers' history meanwhile: reliable keep-all loses
+  // nothing, and DDS acknowledges them on arrival, so the writers are not held up).
+  std::chrono::microseconds batch_period{2000};
   std::chrono::milliseconds max_chunk_interval{1000};  // bounds what a crash can lose
   record::SyncMode sync = record::SyncMode::flush;
   std::string vendor = "cyclone";

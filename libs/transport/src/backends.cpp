@@ -32,9 +32,9 @@ std::unique_ptr<Participant> create_participant(const std::string& vendor, int d
   throw std::runtime_error("DDS vendor '" + vendor + "' is not compiled into this build");
 }
 
-void clean_up_domain(int domain_id) {
+void clean_up_after_killed_processes() {
 #ifdef MECHSIM_HAVE_FASTDDS
-  fastdds::clean_shared_memory(domain_id);
+  fastdds::clean_shared_memory();
 #endif
 }
 

@@ -1,6 +1,7 @@
 #include "cam_design_plots.h"
 
 #include <cmath>
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <limits>
@@ -54,6 +55,11 @@ Series circle(std::string label, double radius_mm, std::string style) {
 
 Series single_point(std::string label, double x, double y) { return {std::move(label), {x}, {y}, "points"}; }
 
+// A vertical dashed line at x from y0 to y1: marks an angle more visibly than a point.
+Series marker(std::string label, double x, double y0, double y1) {
+  return {std::move(label), {x, x}, {y0, y1}, "dashed"};
+}
+
 std::vector<NamedFigure> roller_figures(const std::string& scene, const RollerDesign& d) {
   const auto& c = d.cycle;
   const auto& k = d.contour;
@@ -80,6 +86,10 @@ std::vector<NamedFigure> roller_figures(const std::string& scene, const RollerDe
                 theta_label, "alpha [deg]",
                 {over_cycle(c, "alpha", [](auto& p) { return p.pressure_angle_rad / degree; })}};
     alpha.hlines = {{limit, "+limit"}, {-limit, "-limit"}};
+    // Room above the limit lines, which autoscaling would put on the frame.
+    const double span = 1.15 * std::max({limit, std::abs(r.pressure_angle.max.value / degree),
+                                         std::abs(r.pressure_angle.min.value / degree)});
+    alpha.yrange = std::make_pair(-span, span);
     // rho passes through infinity at an inflexion of the pitch curve: clip the view and
     // break the line where it leaves it, so the spikes do not draw vertical strokes.
     const double clip = 3.0 * r0_mm;
@@ -121,8 +131,10 @@ std::vector<NamedFigure> roller_figures(const std::string& scene, const RollerDe
                    fmt("%.4g", r.flywheel.inertia_kgm2) + " kg m^2",
                theta_label, "A [J]",
                {over_cycle(c, "A(theta)", [](auto& p) { return p.a_j; }),
-                single_point("theta_m (min A, fastest)", t.theta_a_min_rad / degree, t.a_min_j),
-                single_point("theta_M (max A, slowest)", t.theta_a_max_rad / degree, t.a_max_value_j)}};
+                marker("theta_m = " + fmt("%.2f", t.theta_a_min_rad / degree) + " deg (min A, fastest)",
+                       t.theta_a_min_rad / degree, t.a_min_j, t.a_max_value_j),
+                marker("theta_M = " + fmt("%.2f", t.theta_a_max_rad / degree) + " deg (max A, slowest)",
+                       t.theta_a_max_rad / degree, t.a_min_j, t.a_max_value_j)}};
     area.hlines = {{t.a_min_j, ""}, {t.a_max_value_j, ""}};
     out.push_back({"drive_torque_flywheel.png", Figure{"Drive torque and flywheel of '" + scene + "'", {torque, area}}});
   }

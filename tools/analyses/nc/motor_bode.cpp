@@ -83,13 +83,14 @@ MotorBodeResult analyse_motor_bode(const config::Scene& scene, std::vector<std::
     variant.shaft_damping = b3;
     r.shaft_damping_variants.push_back(analyse_motor_tacho(variant, r.settings));
   }
+  // Parsed even with the load inertia given, so that bad slide data is refused by either command.
+  const SlideCase slide = slide_case_from_scene(scene, settings);
   if (r.settings.load_inertia) {
     r.load_inertia = *r.settings.load_inertia;
     r.load_inertia_source = "design.motor_bode.load_inertia";
   } else {
     // The drive train behind the coupling as one rigid body: what the motor sees at low
     // frequency (spec §2, "rigid").
-    const SlideCase slide = slide_case_from_scene(scene, settings);
     r.load_inertia = slide.data.coupling_inertia + slide.data.spindle_inertia() + slide.data.slide_inertia();
     r.load_inertia_source = "I_kopp + I_sp + I_slide of the slide data (" +
                             (slide.source.where.empty() ? slide.source.kind : slide.source.where) + ")";

@@ -66,9 +66,9 @@ MotorBodeSettings parse_motor_bode(const ConfigNode& m) {
 SlideModesSettings parse_slide_modes(const ConfigNode& m) {
   if (!m.is_map())
     m.fail("expected a map {slide_position, ritz_shapes, lump_coupling_inertia, position_points, diameter_range, "
-           "diameter_points, ritz_convergence, fe_convergence}");
+           "diameter_points, ritz_convergence, fe_convergence, sweep_fe_elements}");
   m.allow_only({"slide_position", "ritz_shapes", "lump_coupling_inertia", "position_points", "diameter_range",
-                "diameter_points", "ritz_convergence", "fe_convergence"});
+                "diameter_points", "ritz_convergence", "fe_convergence", "sweep_fe_elements"});
   SlideModesSettings s;
   if (m.has("slide_position")) {
     s.slide_position = m.non_negative_quantity("slide_position", dim::length);
@@ -87,6 +87,7 @@ SlideModesSettings parse_slide_modes(const ConfigNode& m) {
   // coupling inertia lumped at the drive end sits on the end node), one element each.
   if (auto r = m.optional_child("fe_convergence"))
     s.fe_convergence = parse_counts(*r, 2, 100000, "[8, 16, 32, 64, 128]");
+  s.sweep_fe_elements = parse_count(m, "sweep_fe_elements", s.sweep_fe_elements, 2, 100000);
   return s;
 }
 

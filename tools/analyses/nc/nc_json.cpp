@@ -84,7 +84,8 @@ json settings_json(const SlideModesSettings& s) {
           {"diameter_range_mm", {s.diameter_from * 1e3, s.diameter_to * 1e3}},
           {"diameter_points", s.diameter_points},
           {"ritz_convergence", s.ritz_convergence},
-          {"fe_convergence", s.fe_convergence}};
+          {"fe_convergence", s.fe_convergence},
+          {"sweep_fe_elements", s.sweep_fe_elements}};
 }
 
 json convergence_json(const std::vector<ConvergencePoint>& points, const char* count_key) {

@@ -1,5 +1,6 @@
 #include "nc_plots.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -13,6 +14,34 @@ std::string fmt(const char* format, double a, double b = 0) {
   char text[128];
   std::snprintf(text, sizeof text, format, a, b);
   return text;
+}
+
+// The plot library draws an opaque key in the top right corner: widen the y range upwards
+// so that the curves stay below it (about 8 % of the plot height per key entry).
+void leave_room_for_key(plot::Panel& panel) {
+  double lo = INFINITY, hi = -INFINITY;
+  int entries = static_cast<int>(panel.hlines.size());
+  for (const auto& series : panel.series) {
+    if (!series.label.empty()) ++entries;
+    for (double y : series.y)
+      if (std::isfinite(y) && (!panel.logy || y > 0)) lo = std::min(lo, y), hi = std::max(hi, y);
+  }
+  for (const auto& [y, label] : panel.hlines) lo = std::min(lo, y), hi = std::max(hi, y);
+  if (!(hi > lo)) return;
+  const double key_fraction = std::min(0.6, 0.05 + 0.08 * entries);
+  if (panel.logy) {
+    const double decades = std::log10(hi / lo);
+    panel.yrange = {{lo / 2, hi * std::pow(10.0, decades * key_fraction / (1 - key_fraction)) * 2}};
+  } else {
+    const double margin = 0.03 * (hi - lo);
+    panel.yrange = {{lo - margin, hi + margin + (hi - lo) * key_fraction / (1 - key_fraction)}};
+  }
+}
+
+plot::Figure with_room_for_keys(plot::Figure figure) {
+  for (auto& panel : figure.panels) leave_room_for_key(panel);
+  figure.height_px_per_panel = 400;
+  return figure;
 }
 
 struct LabelledAnalysis {
@@ -71,7 +100,7 @@ plot::Figure load_inertia_bode(const MotorBodeResult& r) {
 
 plot::Figure position_figure(const SlideModesResult& r) {
   plot::Series ritz{.label = fmt("Rayleigh-Ritz, %g cosines", r.settings.ritz_shapes)};
-  plot::Series converged{.label = fmt("FE chain, %g elements (converged)", r.settings.fe_convergence.back()),
+  plot::Series converged{.label = fmt("FE chain, %g elements (converged)", r.settings.sweep_fe_elements),
                          .style = "dashed"};
   for (const auto& p : r.f0_vs_position) {
     ritz.x.push_back(p.position * 1e3), ritz.y.push_back(p.ritz_hz);
@@ -98,7 +127,7 @@ plot::Figure diameter_figure(const SlideModesResult& r) {
   plot::Series m2a{.label = "model 2: grounded chain, 1st", .style = "dashed"};
   plot::Series m2b{.label = "model 2: grounded chain, 2nd", .style = "dashed"};
   plot::Series m3{.label = fmt("model 3: continuous shaft, %g cosines", r.settings.ritz_shapes), .style = "linespoints"};
-  plot::Series m3c{.label = "model 3: converged (FE)"};
+  plot::Series m3c{.label = fmt("model 3: FE chain, %g elements", r.settings.sweep_fe_elements)};
   for (const auto& p : r.f0_vs_diameter) {
     const double d = p.diameter * 1e3;
     m1.x.push_back(d), m1.y.push_back(p.model1_hz);
@@ -151,16 +180,17 @@ plot::Figure convergence_figure(const SlideModesResult& r) {
 }  // namespace
 
 std::vector<NamedFigure> motor_bode_figures(const MotorBodeResult& r) {
-  std::vector<NamedFigure> figures{{"bode.png", nominal_bode(r)}};
-  if (!r.shaft_damping_variants.empty()) figures.push_back({"bode_b3_variants.png", b3_variants_bode(r)});
-  figures.push_back({"bode_load_inertia.png", load_inertia_bode(r)});
+  std::vector<NamedFigure> figures{{"bode.png", with_room_for_keys(nominal_bode(r))}};
+  if (!r.shaft_damping_variants.empty())
+    figures.push_back({"bode_b3_variants.png", with_room_for_keys(b3_variants_bode(r))});
+  figures.push_back({"bode_load_inertia.png", with_room_for_keys(load_inertia_bode(r))});
   return figures;
 }
 
 std::vector<NamedFigure> slide_modes_figures(const SlideModesResult& r) {
-  return {{"f0_vs_position.png", position_figure(r)},
-          {"f0_vs_diameter.png", diameter_figure(r)},
-          {"model3_convergence.png", convergence_figure(r)}};
+  return {{"f0_vs_position.png", with_room_for_keys(position_figure(r))},
+          {"f0_vs_diameter.png", with_room_for_keys(diameter_figure(r))},
+          {"model3_convergence.png", with_room_for_keys(convergence_figure(r))}};
 }
 
 PlotOutcome write_figures(const std::string& dir, const std::vector<NamedFigure>& figures) {

@@ -19,7 +19,7 @@ struct Model3 {
   }
   double ritz_hz(const nc::SlideDriveData& data, double x) const { return ritz_hz(data, x, settings.ritz_shapes); }
   double converged_hz(const nc::SlideDriveData& data, double x) const {
-    return fe_hz(data, x, settings.fe_convergence.back());
+    return fe_hz(data, x, settings.sweep_fe_elements);
   }
 };
 
@@ -39,6 +39,7 @@ SlideModesResult analyse_slide_modes(const config::Scene& scene, std::vector<std
   const NcDesignSettings settings = parse_nc_design_settings(scene.design);
   r.settings = settings.slide_modes;
   r.slide = slide_case_from_scene(scene, settings);
+  motor_case_from_scene(scene, settings);  // unused here; parsed so that either command refuses bad motor data
   const nc::SlideDriveData& data = r.slide.data;
   const double length = data.spindle_length;
   r.slide_position = r.settings.slide_position.value_or(nc::mid_slide_position(data));

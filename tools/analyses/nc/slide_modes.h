@@ -24,7 +24,7 @@ struct ConvergencePoint {
 struct PositionPoint {
   double position;      // x along the spindle from its drive end [m]
   double ritz_hz;       // model 3, settings.ritz_shapes shapes
-  double converged_hz;  // model 3, FE chain with the finest convergence mesh
+  double converged_hz;  // model 3, FE chain with settings.sweep_fe_elements elements
 };
 
 struct DiameterPoint {
@@ -32,7 +32,7 @@ struct DiameterPoint {
   double model1_hz;
   models::nc::GroundedChainFrequencies model2;
   double model3_hz;            // at the analysed slide position, settings.ritz_shapes shapes
-  double model3_converged_hz;  // FE chain, finest mesh
+  double model3_converged_hz;  // FE chain, settings.sweep_fe_elements elements
 };
 
 struct SlideModesResult {

@@ -264,6 +264,7 @@ class CycloneRawParticipant final : public RawParticipant {
     const dds_entity_t t = topic(topic_name, type_name, scoped);
     Qos qos;
     set_qos(qos, topic_kind(topic_name));
+    dds_qset_userdata(qos.q, kToolReaderUserData, std::strlen(kToolReaderUserData));
     dds_entity_t r = check(dds_create_reader(participant_, t, qos.q, nullptr),
                            "create raw reader on " + topic_name);
     dds_entity_t cond = check(dds_create_readcondition(r, DDS_ANY_STATE), "create read condition");
@@ -326,8 +327,8 @@ class CycloneRawParticipant final : public RawParticipant {
 
   // Takes what the discovery readers learned since the last call into endpoints_: a live
   // endpoint is added (keyed by its instance), a gone one (disposed or unregistered)
-  // removed. One sample per call: Cyclone 0.10 loans of more than one built-in sample
-  // proved fragile (heap corruption when the loan size changes between calls).
+  // removed. One sample per take: loaned reads of 64 and of 1024 built-in samples from
+  // the same reader crashed Cyclone 0.10.2 here (heap corruption in its loan handling).
   bool poll_discovery() {
     bool changed = false;
     for (std::size_t k = 0; k < discovery_readers_.size(); ++k) {

@@ -2,25 +2,22 @@
 // Cyclone backend (participant.h, docs/dds.md), so the two interoperate topic by topic.
 #include "fastdds_participant.h"
 
-#include <sys/stat.h>
-#include <unistd.h>
-
-#include <cerrno>
-#include <condition_variable>
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
+#include <limits>
 #include <map>
-#include <mutex>
 #include <stdexcept>
 #include <string>
 
+#include <fastdds/dds/core/condition/GuardCondition.hpp>
+#include <fastdds/dds/core/condition/WaitSet.hpp>
 #include <fastdds/dds/domain/DomainParticipant.hpp>
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 #include <fastdds/dds/publisher/DataWriter.hpp>
 #include <fastdds/dds/publisher/Publisher.hpp>
 #include <fastdds/dds/subscriber/DataReader.hpp>
-#include <fastdds/dds/subscriber/DataReaderListener.hpp>
+#include <fastdds/dds/subscriber/ReadCondition.hpp>
 #include <fastdds/dds/subscriber/SampleInfo.hpp>
 #include <fastdds/dds/subscriber/Subscriber.hpp>
 #include <fastdds/dds/topic/Topic.hpp>
@@ -47,12 +44,14 @@ T* check(T* entity, const std::string& what) {
 }
 
 Duration_t to_duration(std::chrono::nanoseconds d) {
+  if (d.count() < 0) d = std::chrono::nanoseconds(0);
   const auto s = std::chrono::duration_cast<std::chrono::seconds>(d);
+  if (s.count() >= std::numeric_limits<std::int32_t>::max()) return eprosima::fastrtps::c_TimeInfinite;
   return Duration_t(static_cast<std::int32_t>(s.count()), static_cast<std::uint32_t>((d - s).count()));
 }
 
 // QoS contract (participant.h). Everything else (data sharing, memory policy) comes from
-// the default profiles of the XML file, so the UDP profile can switch data sharing off.
+// the default profiles of the XML file, which switch data sharing off (docs/dds.md).
 void data_qos(dds::ReliabilityQosPolicy& reliability, dds::HistoryQosPolicy& history, dds::DurabilityQosPolicy& durability) {
   reliability.kind = dds::RELIABLE_RELIABILITY_QOS;
   reliability.max_blocking_time = Duration_t(30, 0);
@@ -77,38 +76,6 @@ void status_qos(dds::ReliabilityQosPolicy& reliability, dds::HistoryQosPolicy& h
 
 using QosSetter = void (*)(dds::ReliabilityQosPolicy&, dds::HistoryQosPolicy&, dds::DurabilityQosPolicy&);
 
-// A flag raised for every sample any reader receives, or by wake().
-class WakeSignal {
- public:
-  void raise() {
-    {
-      std::lock_guard lock(mutex_);
-      raised_ = true;
-    }
-    cv_.notify_all();
-  }
-  bool wait(std::chrono::nanoseconds timeout) {
-    std::unique_lock lock(mutex_);
-    const bool got = cv_.wait_for(lock, timeout, [this] { return raised_; });
-    raised_ = false;
-    return got;
-  }
-
- private:
-  std::mutex mutex_;
-  std::condition_variable cv_;
-  bool raised_ = false;
-};
-
-class DataListener final : public dds::DataReaderListener {
- public:
-  explicit DataListener(WakeSignal& signal) : signal_(signal) {}
-  void on_data_available(dds::DataReader*) override { signal_.raise(); }
-
- private:
-  WakeSignal& signal_;
-};
-
 void copy_bounded(std::string& dst, const std::string& src, std::size_t capacity) { dst = src.substr(0, capacity); }
 
 }  // namespace
@@ -121,23 +88,17 @@ struct FastCore {
   dds::Publisher* publisher = nullptr;
   dds::Subscriber* subscriber = nullptr;
   std::map<std::string, dds::Topic*> topics;
-  std::string shared_memory_dir;  // data-sharing segments of this domain ("" = OS default)
-  WakeSignal signal;
-  DataListener listener{signal};
+  // One waitset for wait(): a read condition per reader (triggered while the reader holds
+  // a sample, as Cyclone's) and a guard condition for wake().
+  dds::GuardCondition guard;
+  dds::WaitSet waitset;
+
+  FastCore() { waitset.attach_condition(guard); }
 
   ~FastCore() {
     if (participant == nullptr) return;
     participant->delete_contained_entities();
     dds::DomainParticipantFactory::get_instance()->delete_participant(participant);
-  }
-
-  // Data sharing (where the profile leaves it on) keeps its segments in the domain's own
-  // folder, which the launcher removes after a run: `fastdds shm clean` knows only the
-  // transport's segments, and a killed writer's pool would stay in /dev/shm for good.
-  void place_data_sharing(dds::DataSharingQosPolicy& policy) const {
-    if (shared_memory_dir.empty()) return;
-    if (policy.kind() == dds::AUTO) policy.automatic(shared_memory_dir);
-    else if (policy.kind() == dds::ON) policy.on(shared_memory_dir);
   }
 
   dds::Topic* topic(const std::string& name, dds::TopicDataType* type_support) {
@@ -161,7 +122,6 @@ struct FastCore {
     // writer then stalls for up to 3 s every 400 steps (measured over UDP, and with Cyclone
     // readers). A 10 ms period keeps the history short; it costs nothing once all is acked.
     qos.reliable_writer_qos().times.heartbeatPeriod = Duration_t(0, 10'000'000);
-    place_data_sharing(qos.data_sharing());
     return check(publisher->create_datawriter(t, qos), "create writer on " + topic_name);
   }
 
@@ -169,9 +129,21 @@ struct FastCore {
     dds::Topic* t = topic(topic_name, type_support);
     dds::DataReaderQos qos = subscriber->get_default_datareader_qos();
     qos_setter(qos.reliability(), qos.history(), qos.durability());
-    place_data_sharing(qos.data_sharing());
-    return check(subscriber->create_datareader(t, qos, &listener, dds::StatusMask::data_available()),
-                 "create reader on " + topic_name);
+    return check(subscriber->create_datareader(t, qos), "create reader on " + topic_name);
+  }
+
+  dds::ReadCondition* attach(dds::DataReader* reader) {
+    dds::ReadCondition* c = check(
+        reader->create_readcondition(dds::ANY_SAMPLE_STATE, dds::ANY_VIEW_STATE, dds::ANY_INSTANCE_STATE),
+        "create read condition on " + reader->get_topicdescription()->get_name());
+    waitset.attach_condition(*c);
+    return c;
+  }
+
+  void delete_reader(dds::DataReader* reader, dds::ReadCondition* condition) {
+    waitset.detach_condition(*condition);
+    reader->delete_readcondition(condition);
+    subscriber->delete_datareader(reader);
   }
 };
 
@@ -219,7 +191,23 @@ class FastSampleWriter final : public SampleWriter, Endpoint {
     if (!writer_->write(sample_->data())) fail("write " + type_.topic_type().idl_name);
   }
   int matched_readers() const override { return publication_matched(writer_); }
-  void flush(std::chrono::nanoseconds timeout) override { writer_->wait_for_acknowledgments(to_duration(timeout)); }
+  // Waits at most 1 s, whatever the caller allows: Fast DDS 2.9 does not act on Cyclone
+  // DDS's disposal of a reader or participant (measured: a Fast DDS writer still counts a
+  // Cyclone reader whose process has exited as matched until the Cyclone lease expires,
+  // 10 s later). At the end of a mixed run a Cyclone partner that finished first may leave
+  // without acknowledging our last sample (it did not need it), and waiting for it would
+  // outlast the launcher's hang timeout. A live reader acknowledges within a few heartbeat
+  // periods (10 ms each). Polled in slices, so a reader that does get unmatched stops
+  // counting at once.
+  void flush(std::chrono::nanoseconds timeout) override {
+    const auto deadline = std::chrono::steady_clock::now() + std::min<std::chrono::nanoseconds>(timeout, std::chrono::seconds(1));
+    while (writer_->wait_for_acknowledgments(to_duration(std::chrono::milliseconds(20))) != ReturnCode::RETCODE_OK)
+      if (std::chrono::steady_clock::now() > deadline) {
+        std::fprintf(stderr, "warning: Fast DDS: %s: not every one of %d matched readers acknowledged the last samples\n",
+                     writer_->get_topic()->get_name().c_str(), matched_readers());
+        return;
+      }
+  }
 
  private:
   dds::DataWriter* writer_;
@@ -230,8 +218,8 @@ class FastSampleWriter final : public SampleWriter, Endpoint {
 class FastSampleReader final : public SampleReader, Endpoint {
  public:
   FastSampleReader(std::shared_ptr<FastCore> core, dds::DataReader* r, const FastType& type)
-      : Endpoint(std::move(core)), reader_(r), sample_(type.make_sample()) {}
-  ~FastSampleReader() override { core_->subscriber->delete_datareader(reader_); }
+      : Endpoint(std::move(core)), reader_(r), condition_(core_->attach(r)), sample_(type.make_sample()) {}
+  ~FastSampleReader() override { core_->delete_reader(reader_, condition_); }
   bool take(SampleHeader& header, std::vector<double>& values) override {
     if (!take_one(reader_, sample_->data())) return false;
     sample_->load(header, values);
@@ -241,6 +229,7 @@ class FastSampleReader final : public SampleReader, Endpoint {
 
  private:
   dds::DataReader* reader_;
+  dds::ReadCondition* condition_;
   std::unique_ptr<FastSample> sample_;
 };
 
@@ -267,8 +256,9 @@ class FastControlWriter final : public ControlWriter, Endpoint {
 
 class FastControlReader final : public ControlReader, Endpoint {
  public:
-  FastControlReader(std::shared_ptr<FastCore> core, dds::DataReader* r) : Endpoint(std::move(core)), reader_(r) {}
-  ~FastControlReader() override { core_->subscriber->delete_datareader(reader_); }
+  FastControlReader(std::shared_ptr<FastCore> core, dds::DataReader* r)
+      : Endpoint(std::move(core)), reader_(r), condition_(core_->attach(r)) {}
+  ~FastControlReader() override { core_->delete_reader(reader_, condition_); }
   std::optional<ControlMessage> take() override {
     mechsim::msg::Control c;
     if (!take_one(reader_, &c)) return std::nullopt;
@@ -285,6 +275,7 @@ class FastControlReader final : public ControlReader, Endpoint {
 
  private:
   dds::DataReader* reader_;
+  dds::ReadCondition* condition_;
 };
 
 class FastStatusWriter final : public StatusWriter, Endpoint {
@@ -323,8 +314,9 @@ class FastStatusWriter final : public StatusWriter, Endpoint {
 
 class FastStatusReader final : public StatusReader, Endpoint {
  public:
-  FastStatusReader(std::shared_ptr<FastCore> core, dds::DataReader* r) : Endpoint(std::move(core)), reader_(r) {}
-  ~FastStatusReader() override { core_->subscriber->delete_datareader(reader_); }
+  FastStatusReader(std::shared_ptr<FastCore> core, dds::DataReader* r)
+      : Endpoint(std::move(core)), reader_(r), condition_(core_->attach(r)) {}
+  ~FastStatusReader() override { core_->delete_reader(reader_, condition_); }
   std::optional<StatusMessage> take() override {
     mechsim::msg::Status s;
     if (!take_one(reader_, &s)) return std::nullopt;
@@ -350,18 +342,14 @@ class FastStatusReader final : public StatusReader, Endpoint {
 
  private:
   dds::DataReader* reader_;
+  dds::ReadCondition* condition_;
 };
 
 }  // namespace
 
-std::string data_sharing_dir(int domain_id) {
-  return "/dev/shm/mechsim-fastdds-" + std::to_string(::getuid()) + "-d" + std::to_string(domain_id);
-}
-
-void clean_shared_memory(int domain_id) {
-  std::error_code ec;
-  std::filesystem::remove_all(data_sharing_dir(domain_id), ec);
-  // The transport's segments (fastrtps_*): removed by fastdds-tools when their owner is gone.
+void clean_shared_memory() {
+  // The shared-memory transport's segments (fastrtps_*) whose owner is gone: fastdds-tools
+  // knows them by their lock files, and leaves the segments of live processes alone.
   if (std::system("command -v fastdds >/dev/null 2>&1") == 0 && std::system("fastdds shm clean >/dev/null 2>&1") != 0)
     std::fprintf(stderr, "mechsim: 'fastdds shm clean' failed; stale Fast DDS segments may remain in /dev/shm\n");
 }
@@ -374,8 +362,6 @@ FastParticipant::FastParticipant(int domain_id) : core_(std::make_shared<FastCor
                                  (std::getenv("FASTRTPS_DEFAULT_PROFILES_FILE")
                                       ? std::string(" (profiles from ") + std::getenv("FASTRTPS_DEFAULT_PROFILES_FILE") + ")"
                                       : std::string()));
-  const std::string dir = data_sharing_dir(domain_id);
-  if (::mkdir(dir.c_str(), 0700) == 0 || errno == EEXIST) core_->shared_memory_dir = dir;
   core_->publisher = check(core_->participant->create_publisher(dds::PUBLISHER_QOS_DEFAULT), "create publisher");
   core_->subscriber = check(core_->participant->create_subscriber(dds::SUBSCRIBER_QOS_DEFAULT), "create subscriber");
 }
@@ -410,8 +396,15 @@ std::unique_ptr<StatusReader> FastParticipant::create_status_reader() {
   return std::make_unique<FastStatusReader>(core_, core_->reader(kStatusTopic, new mechsim::msg::StatusPubSubType(), status_qos));
 }
 
-bool FastParticipant::wait(std::chrono::nanoseconds timeout) { return core_->signal.wait(timeout); }
+bool FastParticipant::wait(std::chrono::nanoseconds timeout) {
+  dds::ConditionSeq active;
+  const ReturnCode rc = core_->waitset.wait(active, to_duration(timeout));
+  if (rc == ReturnCode::RETCODE_TIMEOUT) return false;
+  if (rc != ReturnCode::RETCODE_OK) fail("waitset wait");
+  if (std::find(active.begin(), active.end(), &core_->guard) != active.end()) core_->guard.set_trigger_value(false);
+  return true;
+}
 
-void FastParticipant::wake() { core_->signal.raise(); }
+void FastParticipant::wake() { core_->guard.set_trigger_value(true); }
 
 }  // namespace mechsim::transport::fastdds

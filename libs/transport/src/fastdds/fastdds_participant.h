@@ -9,21 +9,16 @@ namespace mechsim::transport::fastdds {
 
 struct FastCore;
 
-// Where the participants of a domain keep their data-sharing segments (a folder in /dev/shm
-// per user and domain).
-std::string data_sharing_dir(int domain_id);
-// After a run of `domain_id` whose processes have all exited: removes the domain's
-// data-sharing folder and runs `fastdds shm clean` (if installed) for the transport's
+// After a run whose processes have all exited, some perhaps killed: runs `fastdds shm
+// clean` (fastdds-tools, if installed), which removes the shared-memory transport's
 // segments of processes that are gone.
-void clean_shared_memory(int domain_id);
+void clean_shared_memory();
 
 // One Fast DDS DomainParticipant (C++ DDS API of Fast DDS 2.9) with one publisher and one
 // subscriber. Transports come from the XML profile in FASTRTPS_DEFAULT_PROFILES_FILE, which
 // the launcher sets (config/dds/fastdds-shm.xml or fastdds-udp.xml: loopback only).
-// wait()/wake(): every reader carries a listener that raises a flag under a mutex and
-// notifies a condition variable; wait() sleeps on it (the Fast DDS 2.9 WaitSet has no
-// working ReadCondition, and a listener sees every sample, whichever thread delivers it:
-// a transport's receive thread or the data-sharing listener).
+// wait()/wake(): one WaitSet with a ReadCondition per reader (any sample state, so it
+// triggers while a reader holds a sample, like Cyclone's) and a GuardCondition for wake().
 class FastParticipant final : public Participant {
  public:
   explicit FastParticipant(int domain_id);

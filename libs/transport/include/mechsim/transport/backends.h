@@ -16,8 +16,9 @@ std::vector<std::string> available_vendors();
 // vendor when it is not compiled in or the participant cannot be created.
 std::unique_ptr<Participant> create_participant(const std::string& vendor, int domain_id);
 
-// Removes what the backends may leave on this host after a run on `domain_id`, once all of
-// its processes have exited, killed ones included (Fast DDS: shared-memory segments).
-void clean_up_domain(int domain_id);
+// Removes what killed processes of any backend left on this host (Fast DDS: its
+// shared-memory transport's segments). Leaves live processes' resources alone, so it is
+// safe while other runs go on.
+void clean_up_after_killed_processes();
 
 }  // namespace mechsim::transport

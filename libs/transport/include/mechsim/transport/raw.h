@@ -98,6 +98,11 @@ class RawParticipant {
   virtual void wake() = 0;
 };
 
+// Every raw reader carries this USER_DATA QoS value, so that a node can tell a tool's
+// reader (recorder, `topic echo`/`hz`) from a partner's when it counts the readers matched
+// with its writer: a tool's reader must not stand in for a partner that is not matched yet.
+inline constexpr const char* kToolReaderUserData = "mechsim:tool";
+
 // A participant of its own on `domain_id` (the network configuration comes from
 // CYCLONEDDS_URI, as for the typed seam). Throws std::runtime_error when the vendor is not
 // compiled in or the participant cannot be created. Only "cyclone" has a raw backend.
