@@ -53,7 +53,7 @@ class ClosedLoopReference final : public Block {
  private:
   // Every sub-block's inputs and outputs at (t, x, u).
   struct Signals {
-    double amplifier_in[3], amplifier_out[4], motor_in[2], motor_out[4], slide_in[1], slide_out[5];
+    double amplifier_in[3], amplifier_out[5], motor_in[2], motor_out[4], slide_in[1], slide_out[5];
   };
   void evaluate(double t, std::span<const double> x, std::span<const double> u, Signals& s) const;
   std::span<const double> part(std::span<const double> x, int offset, const Block& block) const {
