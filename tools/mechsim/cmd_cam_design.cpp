@@ -14,23 +14,6 @@ namespace mechsim::tools {
 
 namespace {
 
-// --set design.<key>=... addresses the scene's design section; SceneArgs would read
-// `design` as a participant name, so those overrides are passed through unchanged.
-std::vector<std::string> overrides_with_design(const SceneArgs& args) {
-  SceneArgs others = args;
-  others.sets.clear();
-  std::vector<std::string> design;
-  for (const auto& s : args.sets) {
-    if (s.rfind("design.", 0) == 0 || s.rfind("design=", 0) == 0)
-      design.push_back(s);
-    else
-      others.sets.push_back(s);
-  }
-  std::vector<std::string> out = others.overrides();
-  out.insert(out.end(), design.begin(), design.end());
-  return out;
-}
-
 struct CamDesignOptions {
   SceneArgs scene;
   std::string json_path, plots_dir, contour_csv, dxf;
@@ -53,7 +36,7 @@ void add_cam_design_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--jump-speed", opt->jump_speed, "print the kinetostatic lift-off speed prominently");
   cmd->callback([opt, &exit_code] {
     namespace cd = cam_design;
-    const std::vector<std::string> overrides = overrides_with_design(opt->scene);
+    const std::vector<std::string> overrides = opt->scene.overrides();
     cd::CamDesignResult result;
     try {
       result = cd::analyse_scene(config::load_scene(opt->scene.scene, overrides), overrides);

@@ -108,11 +108,4 @@ NcDesignSettings parse_nc_design_settings(const std::optional<ConfigNode>& desig
   return s;
 }
 
-SplitOverrides split_design_overrides(const std::vector<std::string>& sets) {
-  SplitOverrides split;
-  for (const auto& s : sets)
-    (s.rfind("design.", 0) == 0 || s.rfind("design=", 0) == 0 ? split.design : split.others).push_back(s);
-  return split;
-}
-
 }  // namespace mechsim::tools::nc_analyses

@@ -59,12 +59,5 @@ struct NcDesignSettings {
 // `design` is Scene::design (absent: all defaults).
 NcDesignSettings parse_nc_design_settings(const std::optional<config::ConfigNode>& design);
 
-// `--set design.<key>=...` addresses the design section, which SceneArgs would read as a
-// participant named `design`: these overrides are split off and passed through unchanged.
-struct SplitOverrides {
-  std::vector<std::string> design;  // "design...." as given
-  std::vector<std::string> others;  // everything else, for SceneArgs
-};
-SplitOverrides split_design_overrides(const std::vector<std::string>& sets);
 
 }  // namespace mechsim::tools::nc_analyses

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "control.h"
+#include "cyclone_qos.h"
 #include "cyclone_types.h"
 #include "status.h"
 
@@ -21,35 +22,6 @@ namespace {
 dds_entity_t check(dds_entity_t e, const std::string& what) {
   if (e < 0) fail(what, e);
   return e;
-}
-
-// RAII for dds_qos_t.
-struct Qos {
-  dds_qos_t* q = dds_create_qos();
-  ~Qos() { dds_delete_qos(q); }
-};
-
-Qos data_qos() {
-  Qos qos;
-  dds_qset_reliability(qos.q, DDS_RELIABILITY_RELIABLE, DDS_SECS(30));
-  dds_qset_history(qos.q, DDS_HISTORY_KEEP_ALL, 0);
-  dds_qset_durability(qos.q, DDS_DURABILITY_VOLATILE);
-  return qos;
-}
-
-Qos control_qos() {
-  Qos qos;
-  dds_qset_reliability(qos.q, DDS_RELIABILITY_RELIABLE, DDS_SECS(10));
-  dds_qset_history(qos.q, DDS_HISTORY_KEEP_LAST, 1);
-  dds_qset_durability(qos.q, DDS_DURABILITY_TRANSIENT_LOCAL);
-  return qos;
-}
-
-Qos status_qos() {
-  Qos qos;
-  dds_qset_reliability(qos.q, DDS_RELIABILITY_BEST_EFFORT, 0);
-  dds_qset_history(qos.q, DDS_HISTORY_KEEP_LAST, 256);
-  return qos;
 }
 
 void copy_bounded(char* dst, std::size_t capacity, const std::string& src) {
@@ -266,7 +238,8 @@ dds_entity_t CycloneParticipant::attach_reader(dds_entity_t reader) {
 std::unique_ptr<SampleWriter> CycloneParticipant::create_writer(const std::string& topic_name,
                                                                 const TopicType& type) {
   const CycloneType& ct = cyclone_type(type);
-  Qos qos = data_qos();
+  Qos qos;
+  set_qos(qos, QosKind::data);
   dds_entity_t w = check(dds_create_writer(participant_, topic(topic_name, ct.descriptor), qos.q, nullptr),
                          "create writer on " + topic_name);
   return std::make_unique<CycloneSampleWriter>(w, ct);
@@ -275,35 +248,40 @@ std::unique_ptr<SampleWriter> CycloneParticipant::create_writer(const std::strin
 std::unique_ptr<SampleReader> CycloneParticipant::create_reader(const std::string& topic_name,
                                                                 const TopicType& type) {
   const CycloneType& ct = cyclone_type(type);
-  Qos qos = data_qos();
+  Qos qos;
+  set_qos(qos, QosKind::data);
   dds_entity_t r = check(dds_create_reader(participant_, topic(topic_name, ct.descriptor), qos.q, nullptr),
                          "create reader on " + topic_name);
   return std::make_unique<CycloneSampleReader>(attach_reader(r), ct);
 }
 
 std::unique_ptr<ControlWriter> CycloneParticipant::create_control_writer() {
-  Qos qos = control_qos();
+  Qos qos;
+  set_qos(qos, QosKind::control);
   dds_entity_t w = check(dds_create_writer(participant_, topic(kControlTopic, &mechsim_msg_Control_desc), qos.q, nullptr),
                          "create control writer");
   return std::make_unique<CycloneControlWriter>(w);
 }
 
 std::unique_ptr<ControlReader> CycloneParticipant::create_control_reader() {
-  Qos qos = control_qos();
+  Qos qos;
+  set_qos(qos, QosKind::control);
   dds_entity_t r = check(dds_create_reader(participant_, topic(kControlTopic, &mechsim_msg_Control_desc), qos.q, nullptr),
                          "create control reader");
   return std::make_unique<CycloneControlReader>(attach_reader(r));
 }
 
 std::unique_ptr<StatusWriter> CycloneParticipant::create_status_writer() {
-  Qos qos = status_qos();
+  Qos qos;
+  set_qos(qos, QosKind::status);
   dds_entity_t w = check(dds_create_writer(participant_, topic(kStatusTopic, &mechsim_msg_Status_desc), qos.q, nullptr),
                          "create status writer");
   return std::make_unique<CycloneStatusWriter>(w);
 }
 
 std::unique_ptr<StatusReader> CycloneParticipant::create_status_reader() {
-  Qos qos = status_qos();
+  Qos qos;
+  set_qos(qos, QosKind::status);
   dds_entity_t r = check(dds_create_reader(participant_, topic(kStatusTopic, &mechsim_msg_Status_desc), qos.q, nullptr),
                          "create status reader");
   return std::make_unique<CycloneStatusReader>(attach_reader(r));

@@ -20,6 +20,7 @@
 #include <string>
 
 #include "control.h"
+#include "cyclone_qos.h"
 #include "cyclone_types.h"
 #include "dds/dds.h"
 #include "dds/ddsi/ddsi_cdrstream.h"
@@ -79,30 +80,14 @@ dds_entity_t check(dds_entity_t e, const std::string& what) {
   return e;
 }
 
-struct Qos {
-  dds_qos_t* q = dds_create_qos();
-  ~Qos() { dds_delete_qos(q); }
-};
-
-// The QoS contract of participant.h, the same settings as cyclone_participant.cpp uses for
-// the typed endpoints (a raw endpoint must match the typed ones exactly).
-void set_qos(Qos& qos, TopicKind kind) {
+// The same QoS as the typed endpoints (cyclone_qos.h): a raw endpoint must match them.
+QosKind qos_kind(TopicKind kind) {
   switch (kind) {
-    case TopicKind::data:
-      dds_qset_reliability(qos.q, DDS_RELIABILITY_RELIABLE, DDS_SECS(30));
-      dds_qset_history(qos.q, DDS_HISTORY_KEEP_ALL, 0);
-      dds_qset_durability(qos.q, DDS_DURABILITY_VOLATILE);
-      break;
-    case TopicKind::control:
-      dds_qset_reliability(qos.q, DDS_RELIABILITY_RELIABLE, DDS_SECS(10));
-      dds_qset_history(qos.q, DDS_HISTORY_KEEP_LAST, 1);
-      dds_qset_durability(qos.q, DDS_DURABILITY_TRANSIENT_LOCAL);
-      break;
-    case TopicKind::status:
-      dds_qset_reliability(qos.q, DDS_RELIABILITY_BEST_EFFORT, 0);
-      dds_qset_history(qos.q, DDS_HISTORY_KEEP_LAST, 256);
-      break;
+    case TopicKind::control: return QosKind::control;
+    case TopicKind::status: return QosKind::status;
+    case TopicKind::data: break;
   }
+  return QosKind::data;
 }
 
 // Encapsulation identifiers (DDS-XTYPES 1.3, 7.6.3.1.2), as the first two bytes read
@@ -263,7 +248,7 @@ class CycloneRawParticipant final : public RawParticipant {
     std::string scoped;
     const dds_entity_t t = topic(topic_name, type_name, scoped);
     Qos qos;
-    set_qos(qos, topic_kind(topic_name));
+    set_qos(qos, qos_kind(topic_kind(topic_name)));
     dds_qset_userdata(qos.q, kToolReaderUserData, std::strlen(kToolReaderUserData));
     dds_entity_t r = check(dds_create_reader(participant_, t, qos.q, nullptr),
                            "create raw reader on " + topic_name);
@@ -276,7 +261,7 @@ class CycloneRawParticipant final : public RawParticipant {
     std::string scoped;
     const dds_entity_t t = topic(topic_name, type_name, scoped);
     Qos qos;
-    set_qos(qos, topic_kind(topic_name));
+    set_qos(qos, qos_kind(topic_kind(topic_name)));
     dds_entity_t w = check(dds_create_writer(participant_, t, qos.q, nullptr),
                            "create raw writer on " + topic_name);
     return std::make_unique<CycloneRawWriter>(w, descriptor_of(scoped), topic_name);
