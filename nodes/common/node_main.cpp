@@ -10,6 +10,8 @@
 
 #include "mechsim/config/scene.h"
 #include "mechsim/cosim/node_runner.h"
+#include "mechsim/cosim/output_log.h"
+#include "mechsim/cosim/replay_block.h"
 #include "mechsim/cosim/scene_plan.h"
 #include "mechsim/transport/backends.h"
 
@@ -36,6 +38,9 @@ int node_main(const char* node_type, int argc, char** argv) {
   app.add_option("--run-id", run_id, "run id the samples carry")->required();
   app.add_option("--domain", domain, "DDS domain id")->required()->check(CLI::Range(0, 232));
   app.add_option("--run-dir", run_dir, "folder for this node's output log (omit: none)");
+  std::string replay;
+  app.add_option("--replay", replay,
+                 "publish the values of this table (written by `mechsim launch --replay`) instead of computing them");
   CLI11_PARSE(app, argc, argv);
 
   std::signal(SIGINT, on_signal);
@@ -51,6 +56,11 @@ int node_main(const char* node_type, int argc, char** argv) {
     if (spec->type != node_type) {
       std::cerr << node_type << ": participant '" << node_name << "' is a " << spec->type << ", not a " << node_type << "\n";
       return 2;
+    }
+    if (!replay.empty()) {
+      cosim::PlannedNode& node = plan.node(node_name);
+      cosim::replace_with_replay(node, cosim::recorded_topic_from_log(cosim::read_output_log(replay), *node.type->publishes, replay),
+                                 scene.time);
     }
     auto participant = transport::create_participant(spec->vendor, domain);
     cosim::NodeRunOptions options;

@@ -25,6 +25,8 @@
 #include "mechsim/cosim/scene_plan.h"
 #include "mechsim/transport/backends.h"
 #include "node_processes.h"
+#include "replay_input.h"
+#include "run_recording.h"
 #include "paths.h"
 #include "run_report.h"
 #include "signal_compare.h"
@@ -32,6 +34,7 @@
 #include "json_io.h"
 #include "plot.h"
 #include "provenance.h"
+#include "reference_accuracy.h"
 
 namespace mechsim::launch {
 
@@ -95,6 +98,8 @@ class Run {
   std::map<std::string, NodeWatch> watch_;
   std::vector<std::string> warnings_;
   bool tty_ = false;
+  std::map<std::string, std::string> replay_tables_;  // node -> table its process replays
+  std::unique_ptr<RunRecording> recording_;
 };
 
 // The last line of a node's log that says "error" (for a node that died before its status
@@ -174,10 +179,13 @@ RunOutcome Run::run_nodes() {
   const auto launched = Clock::now();
   for (const auto& node : plan_.nodes()) {
     const std::string exe = node_executable(node.type->name);
-    processes_.start(node.name(), exe,
-                     {"--scene", run_dir_ + "/scene.yaml", "--node", node.name(), "--run-id", std::to_string(run_id_),
-                      "--domain", std::to_string(domain_), "--run-dir", run_dir_},
-                     run_dir_ + "/" + node.name() + ".log");
+    std::vector<std::string> args{"--scene", run_dir_ + "/scene.yaml", "--node", node.name(), "--run-id", std::to_string(run_id_),
+                                  "--domain", std::to_string(domain_), "--run-dir", run_dir_};
+    if (auto it = replay_tables_.find(node.name()); it != replay_tables_.end()) {
+      args.push_back("--replay");
+      args.push_back(it->second);
+    }
+    processes_.start(node.name(), exe, args, run_dir_ + "/" + node.name() + ".log");
     watch_[node.name()] = {};
   }
 
@@ -233,6 +241,13 @@ RunOutcome Run::run_nodes() {
       return out;
     }
     participant_->wait(std::chrono::milliseconds(5));
+  }
+
+  // The recorder's readers exist since before the nodes: start only once each of them is
+  // matched with its writer, or the first samples could miss the file.
+  if (recording_ && !recording_->wait_matched(std::chrono::seconds(10))) {
+    fail(out, "", "the recorder's readers did not match the nodes' writers within 10 s");
+    return out;
   }
 
   // 2. Start, then watch until every node is done.
@@ -404,17 +419,56 @@ int Run::execute() {
 
   std::fprintf(stderr, "mechsim: scene '%s', run %s, domain %d, %zu nodes, folder %s\n", scene_.name.c_str(),
                hex_id(run_id_).c_str(), domain_, plan_.nodes().size(), run_dir_.c_str());
+  // Replayed participants: their recorded topic, checked and tabulated before any process
+  // starts (a recording that does not fit the scene is refused like a bad scene).
+  for (const std::string& text : opt_.replays) {
+    const ReplayRequest r = parse_replay_request(text);
+    const std::string table = run_dir_ + "/" + r.node + ".replay.bin";
+    try {
+      write_replay_table(r.file, plan_.node(r.node), scene_.time, table);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "mechsim launch: --replay %s: %s\n", text.c_str(), e.what());
+      return 2;
+    }
+    replay_tables_[r.node] = table;
+  }
+  recording_ = RunRecording::start(plan_, domain_, run_dir_);
   RunOutcome out = run_nodes();
   bool fastdds = scene_.vendor == "fastdds";
   for (const auto& p : scene_.participants) fastdds = fastdds || p.vendor == "fastdds";
   // A killed Fast DDS node leaves its shared-memory segments in /dev/shm.
   if (!out.ok && fastdds) transport::clean_up_after_killed_processes();
   json summary = summarise(out);
+  if (!replay_tables_.empty()) {
+    json replayed = json::object();
+    for (const std::string& text : opt_.replays) {
+      const ReplayRequest r = parse_replay_request(text);
+      replayed[r.node] = r.file;
+    }
+    summary["replayed"] = replayed;
+  }
+  if (recording_) {
+    // Samples published per topic: one output-log row per published step.
+    std::map<std::string, std::uint64_t> published;
+    for (const auto& node : plan_.nodes()) {
+      try {
+        published[node.topic] = cosim::read_output_log(run_dir_ + "/" + node.name() + ".outputs.bin").rows();
+      } catch (const std::exception&) {
+        published[node.topic] = 0;  // the node died before its log had a header
+      }
+    }
+    summary["recording"] = recording_->finish(published);
+    const json& rec = summary["recording"];
+    std::fprintf(stderr, "mechsim: recorded %s: %llu messages, %.1f kB%s\n", rec["file"].get<std::string>().c_str(),
+                 static_cast<unsigned long long>(rec["messages"].get<std::uint64_t>()), rec["bytes"].get<double>() / 1e3,
+                 rec["complete"].get<bool>() ? ", every published sample" : " — INCOMPLETE: see summary.json 'recording'");
+  }
 
   if (out.ok) {
     // Compare with the monolithic reference on the macro-step grid.
     cosim::ScenePlan reference_plan = cosim::ScenePlan::build(scene_);
     cosim::ReferenceRun ref = cosim::run_reference(reference_plan);
+    const cosim::ReferenceAccuracy ref_accuracy = cosim::estimate_reference_error(scene_, ref);
     std::map<std::string, cosim::OutputLog> logs;
     for (const auto& node : plan_.nodes())
       logs[node.name()] = cosim::read_output_log(run_dir_ + "/" + node.name() + ".outputs.bin");
@@ -463,7 +517,8 @@ int Run::execute() {
     json ref_events = json::object();
     for (const auto& e : ref.events) ref_events[e.kind] = ref_events.value(e.kind, 0) + 1;
     summary["reference"] = {{"rtol", ref.rtol}, {"wall_time_s", ref.wall_time_s}, {"solver", solver_stats_json(ref.stats)},
-                            {"event_counts", ref_events}};
+                            {"event_counts", ref_events},
+                            {"accuracy", reference_accuracy_json(scene_, ref, ref_accuracy)}};
     tools::write_csv(run_dir_ + "/signals.csv", csv_header, csv_columns);
     summary["files"] = {{"signals_csv", run_dir_ + "/signals.csv"}};
     if (opt_.plots && !figure.panels.empty()) {
@@ -546,6 +601,39 @@ int launch(const LaunchOptions& options) {
   } catch (const config::ConfigError& e) {
     std::fprintf(stderr, "%s\n", e.what());
     return 2;
+  }
+  for (const std::string& text : options.replays) {
+    try {
+      const ReplayRequest r = parse_replay_request(text);
+      if (!scene.find_participant(r.node))
+        throw std::invalid_argument("--replay: no participant '" + r.node + "' in " + scene.file);
+      // A recording holds the topic only: a compared output the topic lacks cannot be replayed.
+      const cosim::PlannedNode& node = plan->node(r.node);
+      std::vector<const config::SignalRef*> refs;
+      for (const auto& c : scene.compare) refs.push_back(&c);
+      for (const auto& rep : scene.report) {
+        refs.push_back(&rep.signal);
+        if (rep.at) refs.push_back(&*rep.at);
+      }
+      for (const config::SignalRef* ref : refs) {
+        if (ref->participant != r.node) continue;
+        const int out = node.block->output_index(ref->output);
+        if (std::find(node.published_outputs.begin(), node.published_outputs.end(), out) == node.published_outputs.end())
+          throw std::invalid_argument("--replay " + r.node + ": " + ref->key_path + " uses '" + ref->full_name() + "', which is not on topic '" +
+                                      node.topic + "', so a recording cannot give it (remove it with --set or replay another participant)");
+      }
+    } catch (const std::invalid_argument& e) {
+      std::fprintf(stderr, "mechsim launch: %s\n", e.what());
+      return 2;
+    }
+  }
+  if (scene.record) {
+    auto vendors = transport::available_vendors();
+    if (std::find(vendors.begin(), vendors.end(), "cyclone") == vendors.end()) {
+      std::fprintf(stderr, "%s\n", config::ConfigError(scene.file, "record", "no 'record' section: recording needs Cyclone DDS, "
+                                                        "which this build left out (MECHSIM_WITH_CYCLONEDDS=OFF)").what());
+      return 2;
+    }
   }
   try {
     Run run(options, scene, *plan);

@@ -19,6 +19,9 @@ struct LaunchOptions {
   bool plots = true;
   double ready_timeout_s = 30.0;       // from process start to all nodes ready
   std::string dds_layout;              // "" (the scene's vendors), "cyclone", "fastdds" or "mixed"
+  // "NODE=FILE": the participant publishes what an MCAP recording holds for its topic
+  // instead of computing it (docs/recording.md, replay_input.h).
+  std::vector<std::string> replays;
 };
 
 // The scene overrides that put the launcher and every participant on one DDS vendor

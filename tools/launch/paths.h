@@ -10,8 +10,9 @@ namespace mechsim::launch {
 std::string executable_dir();
 std::string node_executable(const std::string& node_type);
 std::string project_dir();
-// Points CYCLONEDDS_URI at config/dds/cyclonedds-loopback.xml unless the user set it.
-// Children inherit it.
+// Points CYCLONEDDS_URI at config/dds/cyclonedds-loopback.xml and
+// FASTRTPS_DEFAULT_PROFILES_FILE at config/dds/fastdds-{shm,udp}.xml (MECHSIM_FASTDDS_TRANSPORT)
+// unless the user set them. Children inherit both.
 void configure_dds_environment();
 
 }  // namespace mechsim::launch

@@ -17,6 +17,9 @@ void add_launch_command(CLI::App& app, int& exit_code) {
                   "DDS vendors of this run, overriding the scene: cyclone, fastdds (all participants and the "
                   "launcher on one vendor) or mixed (alternating, the launcher on cyclone)")
       ->check(CLI::IsMember({"cyclone", "fastdds", "mixed"}));
+  cmd->add_option("--replay", opt->replays,
+                  "NODE=FILE: participant NODE publishes what the MCAP recording FILE holds for its topic, step by "
+                  "step in lock-step with the live nodes, instead of computing it (repeatable)");
   cmd->callback([args, opt, &exit_code] {
     opt->scene_path = args->scene;
     opt->overrides = args->overrides();

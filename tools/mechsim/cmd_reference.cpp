@@ -7,6 +7,7 @@
 #include "mechsim/cosim/composer.h"
 #include "mechsim/cosim/scene_plan.h"
 #include "provenance.h"
+#include "reference_accuracy.h"
 #include "run_report.h"
 
 namespace mechsim::tools {
@@ -21,7 +22,9 @@ void add_reference_command(CLI::App& app, int& exit_code) {
   add_scene_args(cmd, *args);
   cmd->add_option("--json", *json_path, "write the reference summary (JSON) to this file");
   cmd->add_option("--csv", *csv_path, "write every output at every macro step (CSV) to this file");
-  cmd->add_option("--rtol", *rtol, "relative tolerance of the monolithic integration")->capture_default_str();
+  cmd->add_option("--rtol", *rtol, "relative tolerance of the monolithic integration (atol = rtol / 100); the run is "
+                  "repeated at a 100x tighter tolerance to estimate the reference's own error")
+      ->capture_default_str();
   cmd->callback([=, &exit_code] {
     config::Scene scene;
     try {
@@ -34,6 +37,7 @@ void add_reference_command(CLI::App& app, int& exit_code) {
     try {
       cosim::ScenePlan plan = cosim::ScenePlan::build(scene);
       cosim::ReferenceRun ref = cosim::run_reference(plan, *rtol, *rtol * 1e-2);
+      const cosim::ReferenceAccuracy accuracy = cosim::estimate_reference_error(scene, ref);
       const auto& t = ref.log.data[0];
       auto series = [&](const config::SignalRef& r) -> std::span<const double> {
         int c = ref.log.column(r.full_name());
@@ -48,9 +52,11 @@ void add_reference_command(CLI::App& app, int& exit_code) {
                              {"rtol", ref.rtol},
                              {"wall_time_s", ref.wall_time_s},
                              {"solver", launch::solver_stats_json(ref.stats)},
+                             {"accuracy", launch::reference_accuracy_json(scene, ref, accuracy)},
                              {"report", launch::report_figures(scene, t, series)}};
       std::printf("reference of '%s': %ld samples, rtol %g, %ld solver steps, %.3f s wall\n", scene.name.c_str(),
                   scene.time.steps() + 1, ref.rtol, ref.stats.steps, ref.wall_time_s);
+      launch::print_reference_accuracy(summary["accuracy"]);
       launch::print_figures(summary["report"]);
       if (!json_path->empty()) write_json_file(*json_path, summary);
       if (!csv_path->empty()) write_csv(*csv_path, ref.log.columns, ref.log.data);

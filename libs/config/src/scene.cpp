@@ -2,6 +2,7 @@
 
 #include <cctype>
 #include <cmath>
+#include <regex>
 #include <sstream>
 
 #include <yaml-cpp/yaml.h>
@@ -9,6 +10,8 @@
 #include "mechsim/config/units.h"
 
 namespace mechsim::config {
+
+const char* default_dds_vendor() { return MECHSIM_DEFAULT_DDS_VENDOR; }
 
 long TimeSpec::steps() const { return std::lround((end - start) / step); }
 
@@ -64,6 +67,33 @@ SolverSpec parse_solver(const ConfigNode& s) {
   return spec;
 }
 
+std::optional<RecordSpec> parse_record(const ConfigNode& r) {
+  if (r.is_scalar()) {
+    if (!r.as_boolean()) return std::nullopt;  // `record: false`
+    return RecordSpec{};
+  }
+  if (!r.is_map()) r.fail("expected true/false or a map with file, topics, regex, compression");
+  r.allow_only({"file", "topics", "regex", "compression"});
+  RecordSpec spec;
+  spec.file = r.string_or("file", spec.file);
+  if (spec.file.empty()) r.child("file").fail("expected a file name, e.g. recording.mcap");
+  if (auto topics = r.optional_child("topics")) {
+    if (!topics->is_sequence()) topics->fail("expected a list of topic names");
+    for (std::size_t i = 0; i < topics->size(); ++i) spec.topics.push_back(topics->at(i).as_string());
+  }
+  if (r.has("regex")) {
+    if (!spec.topics.empty()) r.child("regex").fail("expected either 'topics' or 'regex', not both");
+    spec.regex = r.string("regex");
+    try {
+      std::regex check(spec.regex, std::regex::ECMAScript);
+    } catch (const std::regex_error& e) {
+      r.child("regex").fail(std::string("expected an ECMAScript regular expression (") + e.what() + ")");
+    }
+  }
+  spec.compression = r.has("compression") ? r.choice("compression", {"zstd", "lz4", "none"}) : spec.compression;
+  return spec;
+}
+
 }  // namespace
 
 Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
@@ -103,7 +133,7 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
     }
   }
   scene.design = root.optional_child("design");
-  if (root.has("record")) root.child("record").fail("expected no 'record' section: recording is not implemented yet");
+  if (auto rec = root.optional_child("record")) scene.record = parse_record(*rec);
 
   const ConfigNode participants = root.child("participants");
   if (!participants.is_map() || participants.size() == 0)
@@ -137,8 +167,10 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
       if (spec.from == spec.to) c.child("to").fail("expected another participant than 'from'");
       if (c.has("order"))
         spec.order = c.choice("order", {"jacobi", "gauss_seidel"}) == "jacobi" ? EdgeOrder::jacobi : EdgeOrder::gauss_seidel;
-      if (c.has("reconstruction"))
-        spec.reconstruction = c.choice("reconstruction", {"hold", "linear"}) == "hold" ? Reconstruction::hold : Reconstruction::linear;
+      if (c.has("reconstruction")) {
+        const std::string r = c.choice("reconstruction", {"hold", "linear", "quadratic"});
+        spec.reconstruction = r == "hold" ? Reconstruction::hold : r == "linear" ? Reconstruction::linear : Reconstruction::quadratic;
+      }
       for (const auto& other : scene.connections)
         if (other.from == spec.from && other.to == spec.to) c.fail("expected each from -> to pair once (duplicate of " + other.key_path + ")");
       scene.connections.push_back(spec);

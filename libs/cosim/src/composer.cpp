@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <stdexcept>
 
 namespace mechsim::cosim {
@@ -33,6 +34,12 @@ CompositeBlock::CompositeBlock(ScenePlan& plan) : Block("composite"), plan_(plan
       int src = index_of(edge.from);
       for (const auto& [field, input] : edge.field_to_input)
         wires_[i].push_back({input, src, nodes[src].published_outputs[field]});  // >= 0: the plan checked it
+    }
+
+  for (std::size_t i = 0; i < n; ++i)
+    if (nodes[i].cut && nodes[i].cut->twist_sign > 0) {
+      const int partner = index_of(nodes[i].cut->partner);
+      cuts_.push_back({static_cast<int>(i), partner, &*nodes[i].cut, &*nodes[partner].cut});
     }
 
   for (const auto& node : nodes) {
@@ -68,6 +75,8 @@ CompositeBlock::CompositeBlock(ScenePlan& plan) : Block("composite"), plan_(plan
     return depth[v] = d;
   };
   for (std::size_t v = 0; v < feeds.size(); ++v) passes_ = std::max(passes_, longest(static_cast<int>(v)));
+  // A cut's torque needs both sides' angle and speed (no feedthrough: right after one pass).
+  if (!cuts_.empty()) passes_ += 1;
 }
 
 std::span<const double> CompositeBlock::block_state(std::span<const double> x, std::size_t i) const {
@@ -79,6 +88,14 @@ void CompositeBlock::evaluate(double t, std::span<const double> x) const {
   for (int pass = 0; pass < passes_; ++pass)
     for (std::size_t i = 0; i < nodes.size(); ++i) {
       for (const auto& w : wires_[i]) u_[i][w.input] = y_[w.source_block][w.source_output];
+      for (const auto& c : cuts_) {
+        if (c.plus_block != static_cast<int>(i) && c.minus_block != static_cast<int>(i)) continue;
+        const auto& yp = y_[c.plus_block];
+        const auto& ym = y_[c.minus_block];
+        const double torque = c.plus->stiffness * (yp[c.plus->angle_output] - ym[c.minus->angle_output]) +
+                              c.plus->damping * (yp[c.plus->speed_output] - ym[c.minus->speed_output]);
+        u_[i][c.plus_block == static_cast<int>(i) ? c.plus->torque_input : c.minus->torque_input] = torque;
+      }
       nodes[i].block->calc_outputs(t, block_state(x, i), u_[i], y_[i]);
     }
 }
@@ -190,6 +207,7 @@ ReferenceRun run_reference(ScenePlan& plan, double rtol, double atol) {
 
   ReferenceRun run;
   run.rtol = rtol;
+  run.atol = atol;
   run.log.columns.push_back("t");
   for (const auto& o : composite.outputs()) run.log.columns.push_back(o.name);
   run.log.data.resize(run.log.columns.size());
@@ -211,6 +229,46 @@ ReferenceRun run_reference(ScenePlan& plan, double rtol, double atol) {
   run.stats = integrator.stats();
   run.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return run;
+}
+
+double ReferenceAccuracy::max_abs_of(const std::string& column) const {
+  for (std::size_t i = 0; i < columns.size(); ++i)
+    if (columns[i] == column) return max_abs[i];
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+double ReferenceAccuracy::rms_abs_of(const std::string& column) const {
+  for (std::size_t i = 0; i < columns.size(); ++i)
+    if (columns[i] == column) return rms_abs[i];
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+ReferenceAccuracy estimate_reference_error(const config::Scene& scene, const ReferenceRun& ref, double factor) {
+  ScenePlan plan = ScenePlan::build(scene);
+  ReferenceAccuracy acc;
+  acc.rtol = ref.rtol / factor;
+  acc.atol = ref.atol / factor;
+  const ReferenceRun tight = run_reference(plan, acc.rtol, acc.atol);
+  acc.wall_time_s = tight.wall_time_s;
+  acc.stats = tight.stats;
+  if (tight.log.columns != ref.log.columns || tight.log.rows() != ref.log.rows())
+    throw std::logic_error("reference check: the tighter run has other columns or rows than the reference");
+  for (std::size_t c = 1; c < ref.log.columns.size(); ++c) {
+    double worst = 0.0, sum_sq = 0.0;
+    const auto& a = ref.log.data[c];
+    const auto& b = tight.log.data[c];
+    for (std::size_t k = 0; k < a.size(); ++k) {
+      const double d = std::abs(a[k] - b[k]);
+      // NaN columns (fields a configuration does not compute) agree when both are NaN.
+      if (std::isnan(a[k]) && std::isnan(b[k])) continue;
+      worst = std::isfinite(d) ? std::max(worst, d) : std::numeric_limits<double>::infinity();
+      sum_sq += d * d;
+    }
+    acc.columns.push_back(ref.log.columns[c]);
+    acc.max_abs.push_back(worst);
+    acc.rms_abs.push_back(a.empty() ? 0.0 : std::sqrt(sum_sq / static_cast<double>(a.size())));
+  }
+  return acc;
 }
 
 }  // namespace mechsim::cosim

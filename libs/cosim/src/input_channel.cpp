@@ -40,30 +40,36 @@ void InputChannel::values_at(double t, std::uint64_t k, std::vector<double>& out
     for (std::size_t i = 0; i < out.size(); ++i) out[i] = (*now)[i] + s * ((*next)[i] - (*now)[i]);
     return;
   }
+  extrapolate(s, k, out);
+}
+
+void InputChannel::extrapolate(double s, std::uint64_t k, std::vector<double>& out) const {
+  const std::vector<double>* now = find(k);
   if (!now) throw std::logic_error("Jacobi input reconstructed without its step-k sample");
-  const std::vector<double>* before = k > 0 ? find(k - 1) : nullptr;
-  if (reconstruction_ == config::Reconstruction::hold || !before) {
+  const std::vector<double>* before = k > 0 && reconstruction_ != config::Reconstruction::hold ? find(k - 1) : nullptr;
+  const std::vector<double>* oldest =
+      k > 1 && reconstruction_ == config::Reconstruction::quadratic ? find(k - 2) : nullptr;
+  if (!before) {  // hold, or the first step of an extrapolation
     out = *now;
     return;
   }
   out.resize(now->size());
-  for (std::size_t i = 0; i < out.size(); ++i) out[i] = (*now)[i] + s * ((*now)[i] - (*before)[i]);
+  // Newton's backward form through steps k, k-1 (and k-2): exact for polynomials of the
+  // reconstruction's degree; a quadratic starts as linear while k-2 does not exist yet.
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const double first = (*now)[i] - (*before)[i];
+    out[i] = (*now)[i] + s * first;
+    if (oldest) out[i] += 0.5 * s * (s + 1.0) * (first - ((*before)[i] - (*oldest)[i]));
+  }
 }
 
 void InputChannel::values_at_step_end(std::uint64_t k, std::vector<double>& out) const {
-  const std::vector<double>* now = find(k);
-  const std::vector<double>* next = order_ == config::EdgeOrder::gauss_seidel ? find(k + 1) : nullptr;
-  const std::vector<double>* before = k > 0 ? find(k - 1) : nullptr;
   if (order_ == config::EdgeOrder::gauss_seidel) {
+    const std::vector<double>* next = find(k + 1);
     if (!next) throw std::logic_error("Gauss-Seidel input reconstructed without its samples");
     out = *next;
-  } else if (!now) {
-    throw std::logic_error("Jacobi input reconstructed without its step-k sample");
-  } else if (reconstruction_ == config::Reconstruction::hold || !before) {
-    out = *now;
   } else {
-    out.resize(now->size());
-    for (std::size_t i = 0; i < out.size(); ++i) out[i] = (*now)[i] + ((*now)[i] - (*before)[i]);
+    extrapolate(1.0, k, out);
   }
 }
 
@@ -78,7 +84,7 @@ void InputChannel::initial_values_at(std::vector<double>& out) const {
 }
 
 void InputChannel::discard_before(std::uint64_t k) {
-  // Linear extrapolation at step k needs k-1; keep one more for safety.
+  // Quadratic extrapolation at step k needs k-1 and k-2.
   std::uint64_t keep_from = k >= 2 ? k - 2 : 0;
   samples_.erase(samples_.begin(), samples_.lower_bound(keep_from));
 }

@@ -30,6 +30,8 @@ NodeStepper::NodeStepper(PlannedNode& node, const config::TimeSpec& time)
   y_.assign(block.num_outputs(), 0.0);
   x_.assign(block.num_states(), 0.0);
   block.initial_state(t0_, x_);
+  if (node.cut) cut_side_ = std::make_unique<coupling::InterfaceSide>(*node.block, node.cut->torque_input,
+                                                                      node.cut->angle_output, node.cut->levels);
 }
 
 double NodeStepper::time() const { return t0_ + static_cast<double>(k_) * h_; }
@@ -40,11 +42,32 @@ bool NodeStepper::can_initialise() const {
   return true;
 }
 
-bool NodeStepper::can_step() const {
-  if (!initialised_ || finished()) return false;
+bool NodeStepper::inputs_ready(std::uint64_t k) const {
   for (const auto& c : channels_)
-    if (!c.ready_for_step(k_)) return false;
+    if (!c.ready_for_step(k)) return false;
   return true;
+}
+
+bool NodeStepper::can_step() const {
+  if (!initialised_ || finished() || !inputs_ready(k_)) return false;
+  return !cut_side_ || (own_prediction_ && partner_predictions_.count(k_) > 0);
+}
+
+bool NodeStepper::prediction_due() const {
+  return cut_side_ && initialised_ && !finished() && !own_prediction_ && inputs_ready(k_);
+}
+
+void NodeStepper::predict(std::vector<double>& prediction_fields) {
+  if (!prediction_due()) throw std::logic_error("prediction before the step's inputs arrived");
+  const std::uint64_t k = k_;
+  own_prediction_ = cut_side_->predict(*integrator_, t0_ + static_cast<double>(k + 1) * h_,
+                                       [this, k](double t, std::span<double> u) { inputs_at(t, k, u); }, assumed_torque_);
+  coupling::to_fields(*own_prediction_, prediction_fields);
+}
+
+void NodeStepper::add_partner_prediction(std::uint64_t step, std::span<const double> fields) {
+  if (step + 1 < k_) return;  // stale
+  partner_predictions_.emplace(step, coupling::from_fields(fields));
 }
 
 void NodeStepper::initial_inputs(std::span<double> u) {
@@ -85,12 +108,29 @@ void NodeStepper::step(std::vector<double>& topic_values) {
   const std::uint64_t k = k_;
   // Index-based time, never accumulated: t_k+1 = t0 + (k+1) H.
   const double t_next = t0_ + static_cast<double>(k + 1) * h_;
-  integrator_->mark_discontinuity();  // the reconstructed inputs start afresh each step
-  integrator_->advance_to(t_next, [this, k](double t, std::span<double> u) { inputs_at(t, k, u); });
+  const auto inputs = [this, k](double t, std::span<double> u) { inputs_at(t, k, u); };
+  if (cut_side_) {
+    // Both sides solve the same system with the "+" side's prediction first: equal torques.
+    const PlannedCut& cut = *node_.cut;
+    const auto& partner = partner_predictions_.at(k);
+    const auto& plus = cut.twist_sign > 0 ? *own_prediction_ : partner;
+    const auto& minus = cut.twist_sign > 0 ? partner : *own_prediction_;
+    const std::vector<double> levels =
+        coupling::solve_torque_levels({cut.stiffness, cut.damping}, t_next - time(), plus, minus);
+    cut_side_->advance(*integrator_, t_next, inputs, levels);
+    assumed_torque_ = levels.back();
+    own_prediction_.reset();
+    partner_predictions_.erase(partner_predictions_.begin(), partner_predictions_.upper_bound(k));
+  } else {
+    integrator_->mark_discontinuity();  // the reconstructed inputs start afresh each step
+    integrator_->advance_to(t_next, inputs);
+  }
   for (std::size_t e = 0; e < channels_.size(); ++e) {
     channels_[e].values_at_step_end(k, scratch_);
     for (const auto& [field, input] : node_.inputs[e].field_to_input) u_[input] = scratch_[field];
   }
+  // The published torque at t_k+1 is the step's last level (the same on both sides).
+  if (cut_side_) u_[node_.cut->torque_input] = assumed_torque_;
   node_.block->calc_outputs(t_next, integrator_->state(), u_, y_);
   publishable(topic_values);
   k_ = k + 1;

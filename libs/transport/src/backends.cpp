@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "inproc/inproc_participant.h"
+
 #ifdef MECHSIM_HAVE_CYCLONEDDS
 #include "cyclone/cyclone_participant.h"
 #endif
@@ -23,6 +25,7 @@ std::vector<std::string> available_vendors() {
 }
 
 std::unique_ptr<Participant> create_participant(const std::string& vendor, int domain_id) {
+  if (vendor == "inproc") return std::make_unique<inproc::InprocParticipant>(domain_id);
 #ifdef MECHSIM_HAVE_CYCLONEDDS
   if (vendor == "cyclone") return std::make_unique<cyclone::CycloneParticipant>(domain_id);
 #endif

@@ -34,11 +34,19 @@ const TopicType kTachoState{"mechsim::msg::TachoState", "tacho.idl",
 const TopicType kSlideState{"mechsim::msg::SlideState", "slide.idl",
                             {f64("spindle_angle"), f64("spindle_speed"), f64("slide_position"), f64("slide_speed"),
                              f64("coupling_torque")}};
+// Mirrors idl/coupling.idl (up to 16 torque levels per macro step).
+TopicType coupling_prediction_type() {
+  TopicType t{"mechsim::msg::CouplingPrediction", "coupling.idl", {f64("angle"), f64("assumed_torque"), f64("levels")}};
+  for (const char* prefix : {"predicted_angle_", "sensitivity_"})
+    for (int j = 1; j <= 16; ++j) t.fields.push_back({prefix + std::to_string(j), FieldKind::f64});
+  return t;
+}
+const TopicType kCouplingPrediction = coupling_prediction_type();
 }  // namespace
 
 const std::vector<const TopicType*>& all_topic_types() {
   static const std::vector<const TopicType*> types{&kCamState, &kFollowerState, &kServoCommand, &kTachoState,
-                                                          &kSlideState};
+                                                          &kSlideState, &kCouplingPrediction};
   return types;
 }
 

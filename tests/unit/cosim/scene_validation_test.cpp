@@ -90,5 +90,31 @@ TEST(SceneValidation, OverridesAreValidatedLikeTheFile) {
   EXPECT_EQ(ok.time.steps(), 1000);
 }
 
+TEST(SceneValidation, RecordSection) {
+  expect_refused(cam_press_with("mode: lockstep", "mode: lockstep\nrecord: {fil: x.mcap}"), "record", "unknown key 'fil'");
+  expect_refused(cam_press_with("mode: lockstep", "mode: lockstep\nrecord: {compression: gzip}"), "record.compression", "zstd");
+  expect_refused(cam_press_with("mode: lockstep", "mode: lockstep\nrecord: {regex: '(cam'}"), "record.regex", "regular expression");
+  expect_refused(cam_press_with("mode: lockstep", "mode: lockstep\nrecord: {topics: [a], regex: a}"), "record.regex", "not both");
+  expect_refused(cam_press_with("mode: lockstep", "mode: lockstep\nrecord: maybe"), "record", "");
+
+  auto load = [](const std::string& text) { return config::load_scene(write_scene(text)); };
+  EXPECT_FALSE(load(cam_press_with("mode: lockstep", "mode: lockstep")).record.has_value());
+  EXPECT_FALSE(load(cam_press_with("mode: lockstep", "mode: lockstep\nrecord: false")).record.has_value());
+  const auto all = load(cam_press_with("mode: lockstep", "mode: lockstep\nrecord: true")).record;
+  ASSERT_TRUE(all.has_value());
+  EXPECT_EQ(all->file, "recording.mcap");
+  EXPECT_TRUE(all->topics.empty() && all->regex.empty());
+  EXPECT_EQ(all->compression, "zstd");
+  const auto some =
+      load(cam_press_with("mode: lockstep", "mode: lockstep\nrecord: {file: a.mcap, topics: [cam/state], compression: lz4}")).record;
+  ASSERT_TRUE(some.has_value());
+  EXPECT_EQ(some->file, "a.mcap");
+  EXPECT_EQ(some->topics, std::vector<std::string>{"cam/state"});
+  EXPECT_EQ(some->compression, "lz4");
+  // --set record=true on a scene without the section, as the launcher's users write it.
+  const std::string path = write_scene(cam_press_with("mode: lockstep", "mode: lockstep"));
+  EXPECT_TRUE(config::load_scene(path, {"record=true"}).record.has_value());
+}
+
 }  // namespace
 }  // namespace mechsim::cosim

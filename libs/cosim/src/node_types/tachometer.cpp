@@ -1,6 +1,7 @@
 // Node type `tachometer`: the DC servo motor with its tachometer on a flexible shaft (spec
 // nc_slide.md §1), publishing <name>/state (TachoState). Reads the armature voltage and,
-// across the coupling, the spindle's angle and speed (compliant) or the coupling torque.
+// across the coupling, the spindle's angle and speed (compliant) or the coupling torque
+// (torque; interface_jacobian, where the torque comes from the coupling solve).
 #include "mechsim/cosim/catalog.h"
 #include "mechsim/cosim/nc_params.h"
 #include "mechsim/models/nc/motor_tacho_block.h"
@@ -29,7 +30,9 @@ NodeType tachometer_node_type() {
           make_tachometer,
           {{transport::find_topic_type("ServoCommand"), {{"armature_voltage", "armature_voltage"}}},
            {transport::find_topic_type("SlideState"),
-            {{"coupling_torque", "load_torque"}, {"spindle_angle", "spindle_angle"}, {"spindle_speed", "spindle_speed"}}}}};
+            {{"coupling_torque", "load_torque"}, {"spindle_angle", "spindle_angle"}, {"spindle_speed", "spindle_speed"}}}},
+          // The coupling torque loads the rotor: the motor's angle counts positively in the twist.
+          CutPort{"load_torque", "motor_angle", "motor_speed", +1}};
 }
 
 }  // namespace mechsim::cosim

@@ -5,10 +5,12 @@
 #include <cstring>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "control.h"
 #include "cyclone_qos.h"
 #include "cyclone_types.h"
+#include "mechsim/transport/raw.h"
 #include "status.h"
 
 namespace mechsim::transport::cyclone {
@@ -33,6 +35,33 @@ void copy_bounded(char* dst, std::size_t capacity, const std::string& src) {
 int publication_matched(dds_entity_t writer) {
   dds_publication_matched_status_t st{};
   return dds_get_publication_matched_status(writer, &st) == DDS_RETCODE_OK ? static_cast<int>(st.current_count) : 0;
+}
+
+// Readers matched with `writer` except mechsim's tools' readers (recorder, `topic echo`),
+// which carry USER_DATA kToolReaderUserData (raw.h): a node waits for its partners, and a
+// recorder started first must not stand in for one.
+int partner_readers_matched(dds_entity_t writer) {
+  std::vector<dds_instance_handle_t> handles(8);
+  dds_return_t n = dds_get_matched_subscriptions(writer, handles.data(), handles.size());
+  if (n > static_cast<dds_return_t>(handles.size())) {
+    handles.resize(static_cast<std::size_t>(n));
+    n = dds_get_matched_subscriptions(writer, handles.data(), handles.size());
+  }
+  if (n < 0) return 0;
+  const std::size_t tag_size = std::strlen(kToolReaderUserData);
+  int partners = 0;
+  for (std::size_t i = 0; i < std::min(static_cast<std::size_t>(n), handles.size()); ++i) {
+    dds_builtintopic_endpoint_t* reader = dds_get_matched_subscription_data(writer, handles[i]);
+    if (reader == nullptr) continue;  // unmatched meanwhile
+    void* user_data = nullptr;
+    size_t size = 0;
+    const bool tool = reader->qos != nullptr && dds_qget_userdata(reader->qos, &user_data, &size) &&
+                      size == tag_size && std::memcmp(user_data, kToolReaderUserData, size) == 0;
+    dds_free(user_data);
+    dds_builtintopic_free_endpoint(reader);
+    if (!tool) ++partners;
+  }
+  return partners;
 }
 
 int subscription_matched(dds_entity_t reader) {
@@ -75,7 +104,7 @@ class CycloneSampleWriter final : public SampleWriter {
     dds_return_t rc = dds_write(writer_, buffer_.data());
     if (rc != DDS_RETCODE_OK) fail("write " + type_.type->idl_name, rc);
   }
-  int matched_readers() const override { return publication_matched(writer_); }
+  int matched_readers() const override { return partner_readers_matched(writer_); }
   void flush(std::chrono::nanoseconds timeout) override { dds_wait_for_acks(writer_, timeout.count()); }
 
  private:

@@ -30,12 +30,6 @@
 
 namespace mechsim::transport {
 
-TopicKind topic_kind(std::string_view topic) {
-  if (topic == kControlTopic) return TopicKind::control;
-  if (topic == kStatusTopic) return TopicKind::status;
-  return TopicKind::data;
-}
-
 namespace {
 
 constexpr const char* kControlType = "mechsim::msg::Control";
@@ -51,22 +45,6 @@ const dds_topic_descriptor_t* descriptor_of(std::string_view scoped) {
 }
 
 }  // namespace
-
-std::vector<std::string> raw_type_names() {
-  std::vector<std::string> names;
-  for (const TopicType* t : all_topic_types()) names.push_back(t->idl_name);
-  names.push_back(kControlType);
-  names.push_back(kStatusType);
-  return names;
-}
-
-std::string scoped_type_name(std::string_view name) {
-  for (const std::string& scoped : raw_type_names()) {
-    std::string_view s = scoped;
-    if (name == s || name == s.substr(s.rfind(':') + 1)) return scoped;
-  }
-  return "";
-}
 
 namespace cyclone {
 namespace {
@@ -217,6 +195,7 @@ class CycloneRawWriter final : public RawWriter {
     dds_publication_matched_status_t st{};
     return dds_get_publication_matched_status(writer_, &st) == DDS_RETCODE_OK ? static_cast<int>(st.current_count) : 0;
   }
+  void flush(std::chrono::nanoseconds timeout) override { dds_wait_for_acks(writer_, timeout.count()); }
 
  private:
   dds_entity_t writer_;
@@ -369,9 +348,10 @@ class CycloneRawParticipant final : public RawParticipant {
 }  // namespace
 }  // namespace cyclone
 
-std::unique_ptr<RawParticipant> create_raw_participant(const std::string& vendor, int domain_id) {
-  if (vendor != "cyclone") throw std::runtime_error("no raw-CDR backend for DDS vendor '" + vendor + "'");
-  return std::make_unique<cyclone::CycloneRawParticipant>(domain_id);
+namespace cyclone {
+std::unique_ptr<RawParticipant> create_cyclone_raw_participant(int domain_id) {
+  return std::make_unique<CycloneRawParticipant>(domain_id);
 }
+}  // namespace cyclone
 
 }  // namespace mechsim::transport

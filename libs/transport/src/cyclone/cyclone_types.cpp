@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "cam.h"
+#include "coupling.h"
 #include "follower.h"
 #include "servo.h"
 #include "slide.h"
@@ -52,6 +53,17 @@ std::vector<CycloneType> make_bindings() {
                {MECHSIM_F64(mechsim_msg_SlideState, spindle_angle), MECHSIM_F64(mechsim_msg_SlideState, spindle_speed),
                 MECHSIM_F64(mechsim_msg_SlideState, slide_position), MECHSIM_F64(mechsim_msg_SlideState, slide_speed),
                 MECHSIM_F64(mechsim_msg_SlideState, coupling_torque)}});
+#define MECHSIM_LEVELS(X) X(1) X(2) X(3) X(4) X(5) X(6) X(7) X(8) X(9) X(10) X(11) X(12) X(13) X(14) X(15) X(16)
+#define MECHSIM_PREDICTED(j) MECHSIM_F64(mechsim_msg_CouplingPrediction, predicted_angle_##j),
+#define MECHSIM_SENSITIVITY(j) MECHSIM_F64(mechsim_msg_CouplingPrediction, sensitivity_##j),
+  b.push_back({find_topic_type("CouplingPrediction"), &mechsim_msg_CouplingPrediction_desc,
+               sizeof(mechsim_msg_CouplingPrediction),
+               {MECHSIM_F64(mechsim_msg_CouplingPrediction, angle), MECHSIM_F64(mechsim_msg_CouplingPrediction, assumed_torque),
+                MECHSIM_F64(mechsim_msg_CouplingPrediction, levels), MECHSIM_LEVELS(MECHSIM_PREDICTED)
+                MECHSIM_LEVELS(MECHSIM_SENSITIVITY)}});
+#undef MECHSIM_PREDICTED
+#undef MECHSIM_SENSITIVITY
+#undef MECHSIM_LEVELS
   for (const auto& binding : b)
     if (binding.type == nullptr || binding.slots.size() != binding.type->fields.size())
       throw std::logic_error("cyclone binding does not match topic_types.cpp");

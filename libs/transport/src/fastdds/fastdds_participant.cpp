@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <limits>
 #include <map>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 
@@ -14,6 +15,7 @@
 #include <fastdds/dds/core/condition/WaitSet.hpp>
 #include <fastdds/dds/domain/DomainParticipant.hpp>
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <fastdds/dds/domain/DomainParticipantListener.hpp>
 #include <fastdds/dds/publisher/DataWriter.hpp>
 #include <fastdds/dds/publisher/Publisher.hpp>
 #include <fastdds/dds/subscriber/DataReader.hpp>
@@ -24,6 +26,7 @@
 #include <fastdds/dds/topic/TypeSupport.hpp>
 
 #include "fastdds_types.h"
+#include "mechsim/transport/raw.h"
 #include "fastddsgen/controlPubSubTypes.h"
 #include "fastddsgen/statusPubSubTypes.h"
 
@@ -83,7 +86,38 @@ void copy_bounded(std::string& dst, const std::string& src, std::size_t capacity
 // The DDS entities of one participant. Writers and readers hold a shared_ptr to it, so the
 // participant is deleted only after the last of them (Fast DDS refuses to delete a
 // participant that still has entities, and a dangling DataWriter* would crash).
+// The readers of mechsim's tools (recorder, `topic echo`), known by their USER_DATA
+// (kToolReaderUserData, raw.h), per topic: a node's writer must not count them as the
+// partner it waits for. Fast DDS 2.9 cannot say which readers a writer is matched with
+// (get_matched_subscription_data is unsupported), so matched_readers() subtracts the tool
+// readers discovered on the topic. A tool reader discovered but not matched yet makes the
+// count low for a moment: readiness then waits a little longer, never starts too early.
+class ToolReaderTracker final : public dds::DomainParticipantListener {
+ public:
+  void on_subscriber_discovery(dds::DomainParticipant*, eprosima::fastrtps::rtps::ReaderDiscoveryInfo&& info) override {
+    using Status = eprosima::fastrtps::rtps::ReaderDiscoveryInfo::DISCOVERY_STATUS;
+    const auto& data = info.info.m_qos.m_userData.data_vec();
+    const std::string tag = kToolReaderUserData;
+    const bool tool = data.size() == tag.size() && std::equal(data.begin(), data.end(), tag.begin(),
+                                                              [](auto a, char b) { return static_cast<char>(a) == b; });
+    std::lock_guard lock(mutex_);
+    if (info.status == Status::REMOVED_READER || info.status == Status::IGNORED_READER || !tool)
+      readers_.erase(info.info.guid());
+    else
+      readers_[info.info.guid()] = info.info.topicName().to_string();
+  }
+  int on_topic(const std::string& topic) const {
+    std::lock_guard lock(mutex_);
+    return static_cast<int>(std::count_if(readers_.begin(), readers_.end(), [&](const auto& r) { return r.second == topic; }));
+  }
+
+ private:
+  mutable std::mutex mutex_;
+  std::map<eprosima::fastrtps::rtps::GUID_t, std::string> readers_;
+};
+
 struct FastCore {
+  ToolReaderTracker tool_readers;  // the participant's listener: outlives the participant
   dds::DomainParticipant* participant = nullptr;
   dds::Publisher* publisher = nullptr;
   dds::Subscriber* subscriber = nullptr;
@@ -190,7 +224,9 @@ class FastSampleWriter final : public SampleWriter, Endpoint {
     // Blocks while the KEEP_ALL history is full, up to the reliability's max_blocking_time.
     if (!writer_->write(sample_->data())) fail("write " + type_.topic_type().idl_name);
   }
-  int matched_readers() const override { return publication_matched(writer_); }
+  int matched_readers() const override {
+    return std::max(0, publication_matched(writer_) - core_->tool_readers.on_topic(writer_->get_topic()->get_name()));
+  }
   // Waits at most 1 s, whatever the caller allows: Fast DDS 2.9 does not act on Cyclone
   // DDS's disposal of a reader or participant (measured: a Fast DDS writer still counts a
   // Cyclone reader whose process has exited as matched until the Cyclone lease expires,
@@ -357,7 +393,8 @@ void clean_shared_memory() {
 FastParticipant::FastParticipant(int domain_id) : core_(std::make_shared<FastCore>()) {
   auto* factory = dds::DomainParticipantFactory::get_instance();
   // PARTICIPANT_QOS_DEFAULT: the default profile of FASTRTPS_DEFAULT_PROFILES_FILE if set.
-  core_->participant = check(factory->create_participant(static_cast<dds::DomainId_t>(domain_id), dds::PARTICIPANT_QOS_DEFAULT),
+  core_->participant = check(factory->create_participant(static_cast<dds::DomainId_t>(domain_id), dds::PARTICIPANT_QOS_DEFAULT,
+                                                         &core_->tool_readers, dds::StatusMask::none()),
                              "create participant on domain " + std::to_string(domain_id) +
                                  (std::getenv("FASTRTPS_DEFAULT_PROFILES_FILE")
                                       ? std::string(" (profiles from ") + std::getenv("FASTRTPS_DEFAULT_PROFILES_FILE") + ")"

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "fastddsgen/camPubSubTypes.h"
+#include "fastddsgen/couplingPubSubTypes.h"
 #include "fastddsgen/followerPubSubTypes.h"
 #include "fastddsgen/servoPubSubTypes.h"
 #include "fastddsgen/slidePubSubTypes.h"
@@ -108,6 +109,17 @@ std::vector<std::unique_ptr<FastType>> make_bindings() {
                         MECHSIM_F64(SlideState, spindle_angle), MECHSIM_F64(SlideState, spindle_speed),
                         MECHSIM_F64(SlideState, slide_position), MECHSIM_F64(SlideState, slide_speed),
                         MECHSIM_F64(SlideState, coupling_torque)}));
+#define MECHSIM_LEVELS(X) X(1) X(2) X(3) X(4) X(5) X(6) X(7) X(8) X(9) X(10) X(11) X(12) X(13) X(14) X(15) X(16)
+#define MECHSIM_PREDICTED(j) MECHSIM_F64(CouplingPrediction, predicted_angle_##j),
+#define MECHSIM_SENSITIVITY(j) MECHSIM_F64(CouplingPrediction, sensitivity_##j),
+  b.push_back(std::make_unique<Binding<CouplingPrediction, CouplingPredictionPubSubType>>(
+      "CouplingPrediction", std::vector<Slot<CouplingPrediction>>{
+                                MECHSIM_F64(CouplingPrediction, angle), MECHSIM_F64(CouplingPrediction, assumed_torque),
+                                MECHSIM_F64(CouplingPrediction, levels), MECHSIM_LEVELS(MECHSIM_PREDICTED)
+                                MECHSIM_LEVELS(MECHSIM_SENSITIVITY)}));
+#undef MECHSIM_PREDICTED
+#undef MECHSIM_SENSITIVITY
+#undef MECHSIM_LEVELS
   return b;
 }
 #undef MECHSIM_F64

@@ -12,6 +12,10 @@
 
 namespace mechsim::config {
 
+// The DDS vendor of a participant whose scene names none: "cyclone" when it is compiled in,
+// else "fastdds" (a build option, libs/config/CMakeLists.txt).
+const char* default_dds_vendor();
+
 struct TimeSpec {
   double start = 0.0;  // s
   double end = 0.0;    // s
@@ -20,7 +24,7 @@ struct TimeSpec {
 };
 
 enum class EdgeOrder { jacobi, gauss_seidel };
-enum class Reconstruction { hold, linear };
+enum class Reconstruction { hold, linear, quadratic };
 
 struct SolverSpec {
   std::string method = "cvode_bdf";  // cvode_bdf | cvode_adams
@@ -79,6 +83,15 @@ struct RealtimeSpec {
   double spin_limit = 200e-6;           // s of spinning per wait
 };
 
+// `record:` — the launcher records the run's topics into an MCAP file (docs/recording.md).
+// `record: true` takes every default.
+struct RecordSpec {
+  std::string file = "recording.mcap";  // a relative path is inside the run folder
+  std::vector<std::string> topics;       // exact topic names; none and no regex: every topic
+  std::string regex;                     // ECMAScript, matches the whole topic name
+  std::string compression = "zstd";      // zstd | lz4 | none
+};
+
 struct Scene {
   std::string file;         // path it was loaded from
   std::string name;
@@ -87,7 +100,7 @@ struct Scene {
   std::string mode = "lockstep";  // lockstep | realtime
   double rtf = 1.0;
   RealtimeSpec realtime;
-  std::string vendor = "cyclone";  // scene-wide default
+  std::string vendor = default_dds_vendor();  // scene-wide default
   std::optional<int> domain_id;    // default: the launcher picks a free one
   double hang_timeout = 5.0;       // s without a status from a node => hung
   std::vector<ParticipantSpec> participants;
@@ -97,6 +110,7 @@ struct Scene {
   // Settings of the analyses (`mechsim cam-design`, ...): read by the analysis commands,
   // ignored by a time run.
   std::optional<ConfigNode> design;
+  std::optional<RecordSpec> record;
   ConfigNode root;  // the whole document (with overrides applied)
 
   const ParticipantSpec* find_participant(const std::string& name) const;

@@ -5,6 +5,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -22,6 +23,15 @@ struct InputGroup {
   std::vector<std::pair<std::string, std::string>> field_to_input;
 };
 
+// The side of a stiff mechanical cut a node type can take in the interface-Jacobian
+// coupling scheme (docs/nc-loop.md): the block input that receives the coupling torque T as
+// it is, and the outputs with the interface angle and speed. twist_sign +1: the side that T
+// loads (its angle counts positively in the twist: the motor); -1: the side T drives.
+struct CutPort {
+  std::string torque_input, angle_output, speed_output;
+  int twist_sign = 1;
+};
+
 struct NodeType {
   std::string name;                       // "cam_shaft"
   std::string summary;                    // one line for --help and docs
@@ -33,6 +43,8 @@ struct NodeType {
   std::function<std::unique_ptr<models::Block>(const config::ConfigNode& params, const config::ConfigNode* coupling)>
       make_block;
   std::vector<InputGroup> accepts;
+  // Set when the type can be one side of an interface-Jacobian cut (built in torque mode).
+  std::optional<CutPort> cut_port = std::nullopt;
 
   const InputGroup* group_for(const transport::TopicType& t) const;
 };

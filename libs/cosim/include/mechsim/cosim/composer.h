@@ -45,6 +45,10 @@ class CompositeBlock final : public models::Block {
 
  private:
   struct Wire { int input, source_block, source_output; };
+  // An interface-Jacobian cut: the composer evaluates its spring-damper once, from both
+  // sides' angle and speed outputs, and feeds the torque to both torque inputs.
+  struct CutWire { int plus_block, minus_block; const PlannedCut* plus; const PlannedCut* minus; };
+  std::vector<CutWire> cuts_;
   // Evaluates all outputs (and with them all inputs) at (t, x) into y_/u_ scratch.
   void evaluate(double t, std::span<const double> x) const;
   std::span<const double> block_state(std::span<const double> x, std::size_t i) const;
@@ -65,10 +69,31 @@ struct ReferenceRun {
   std::vector<models::BlockEvent> events;  // kinds prefixed by the participant ("follower.lift_off")
   double wall_time_s = 0.0;
   double rtol = 0.0;
+  double atol = 0.0;
 };
 
 // Integrates the composed scene over its time span at tight tolerance, sampling the outputs
 // at the macro-step grid t_k = t0 + k H.
 ReferenceRun run_reference(ScenePlan& plan, double rtol = 1e-10, double atol = 1e-12);
+
+// The reference's own error, estimated as its difference from a re-run of the scene at a
+// tighter tolerance (rtol and atol divided by `factor`): while the integration error falls
+// with the tolerance, the tight run is `factor` times closer to the exact solution, so the
+// difference is the reference's error to within 1/factor of itself. A co-simulation error
+// below this figure cannot be told apart from the reference's own error.
+struct ReferenceAccuracy {
+  double rtol = 0.0, atol = 0.0;     // of the tighter run
+  double wall_time_s = 0.0;          // of the tighter run
+  solve::SolverStats stats;          // of the tighter run
+  std::vector<std::string> columns;  // "<participant>.<output>", as ReferenceRun::log (without "t")
+  std::vector<double> max_abs, rms_abs;  // per column: max and RMS of |reference - tighter run|
+  // Max difference of one column; NaN when unknown.
+  double max_abs_of(const std::string& column) const;
+  double rms_abs_of(const std::string& column) const;
+};
+
+// Re-runs the scene of `ref` (a fresh plan: the blocks of `plan` keep their run's state) at
+// rtol/factor, atol/factor and compares every output column on the macro-step grid.
+ReferenceAccuracy estimate_reference_error(const config::Scene& scene, const ReferenceRun& ref, double factor = 100.0);
 
 }  // namespace mechsim::cosim

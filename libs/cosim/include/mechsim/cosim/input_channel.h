@@ -2,7 +2,8 @@
 // step, and the reconstruction of the partner's values between exchanges (the design's
 // time section):
 //  - Jacobi edge, step k -> k+1 needs the partner's step-k sample; inside the step the
-//    input is held (ZOH) or extrapolated linearly from steps k-1 and k (hold at k = 0);
+//    input is held (ZOH), extrapolated linearly from steps k-1 and k, or quadratically from
+//    k-2, k-1 and k (with fewer samples at the start: hold at k = 0, linear at k = 1);
 //  - Gauss-Seidel edge needs the step-(k+1) sample; inside the step the input is
 //    interpolated between steps k and k+1.
 // Pure logic (no transport), so the protocol is unit-tested without DDS.
@@ -47,6 +48,8 @@ class InputChannel {
 
  private:
   const std::vector<double>* find(std::uint64_t step) const;
+  // Jacobi reconstruction at fraction s of step k -> k+1 (s = 1: t_k+1).
+  void extrapolate(double s, std::uint64_t k, std::vector<double>& out) const;
   config::EdgeOrder order_;
   config::Reconstruction reconstruction_;
   double t0_, step_;

@@ -18,12 +18,16 @@ models::nc::SlideDriveData parse_slide_drive_data(const config::ConfigNode& para
 models::nc::SlideBlockOptions parse_slide_options(const config::ConfigNode& params);
 models::nc::ServoAmplifierParams parse_servo_amplifier_params(const config::ConfigNode& params);
 
-// The coupling element of a connection: {scheme: compliant | torque, stiffness, damping}.
-// compliant: both sides evaluate the spring-damper from their own state and the partner's
-// reconstructed angle and speed; torque: the slide side evaluates it and sends the torque.
+// The coupling element of a connection: {scheme: compliant | torque | interface_jacobian,
+// stiffness, damping, levels}. compliant: both sides evaluate the spring-damper from their
+// own state and the partner's reconstructed angle and speed; torque: the slide side
+// evaluates it and sends the torque; interface_jacobian: both blocks take the torque as an
+// input and solve `levels` torque levels per macro step from each other's predictions
+// (libs/cosim/coupling/interface_jacobian.h).
 struct CouplingSpec {
   std::string scheme = "compliant";
   models::nc::CouplingParams params;
+  int levels = 10;  // interface_jacobian: torque levels per macro step (1..16)
 };
 CouplingSpec parse_coupling(const config::ConfigNode& coupling);
 

@@ -5,9 +5,13 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <memory>
+#include <optional>
+#include <span>
 #include <vector>
 
+#include "mechsim/cosim/coupling/interface_jacobian.h"
 #include "mechsim/cosim/input_channel.h"
 #include "mechsim/cosim/scene_plan.h"
 #include "mechsim/solve/block_integrator.h"
@@ -36,6 +40,13 @@ class NodeStepper {
   // Integrates over [t_k, t_k+1] and computes the step-(k+1) outputs.
   void step(std::vector<double>& topic_values);
 
+  // Interface-Jacobian cut (node().cut): before step k -> k+1 the node publishes its
+  // prediction for that step on the cut's topic (step index k), once every other input of
+  // the step is there; the step then waits for the partner's prediction of step k.
+  bool prediction_due() const;
+  void predict(std::vector<double>& prediction_fields);
+  void add_partner_prediction(std::uint64_t step, std::span<const double> fields);
+
   // All block outputs at the current step (for the run folder), and solver statistics.
   const std::vector<double>& outputs() const { return y_; }
   const solve::SolverStats* solver_stats() const { return integrator_ ? &integrator_->stats() : nullptr; }
@@ -46,7 +57,15 @@ class NodeStepper {
   void initial_inputs(std::span<double> u);
   void publishable(std::vector<double>& topic_values) const;
 
+  bool inputs_ready(std::uint64_t k) const;
+
   PlannedNode& node_;
+  // Interface-Jacobian cut: this side, its prediction for step k_ (if made), the partner's
+  // predictions by step, and the torque the next prediction assumes (the last solved level).
+  std::unique_ptr<coupling::InterfaceSide> cut_side_;
+  std::optional<coupling::InterfacePrediction> own_prediction_;
+  std::map<std::uint64_t, coupling::InterfacePrediction> partner_predictions_;
+  double assumed_torque_ = 0.0;
   double t0_, h_;
   std::uint64_t n_steps_;
   std::vector<InputChannel> channels_;

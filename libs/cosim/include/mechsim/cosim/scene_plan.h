@@ -6,6 +6,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -24,6 +25,20 @@ struct InboundEdge {
   config::Reconstruction reconstruction = config::Reconstruction::hold;
 };
 
+// This node's side of a cut joined by the interface-Jacobian scheme (a connection with
+// `coupling: {scheme: interface_jacobian}`): no state fields cross it; each side publishes a
+// CouplingPrediction on "<name>/coupling" every step and reads the partner's.
+struct PlannedCut {
+  std::string partner;                       // the other participant of the cut
+  std::string topic, partner_topic;          // "<name>/coupling", "<partner>/coupling"
+  const transport::TopicType* type = nullptr;  // CouplingPrediction
+  int torque_input = -1, angle_output = -1, speed_output = -1;  // of this node's block
+  int twist_sign = 1;                        // +1: the torque loads this side; -1: it drives it
+  int levels = 10;                           // torque levels per macro step
+  double stiffness = 0.0, damping = 0.0;     // the coupling element
+  std::string key_path;                      // "connections[3].coupling"
+};
+
 struct PlannedNode {
   const config::ParticipantSpec* spec = nullptr;
   const NodeType* type = nullptr;
@@ -32,6 +47,7 @@ struct PlannedNode {
   std::vector<int> published_outputs;   // block output index of each topic field, -1: not computed (NaN)
   std::vector<InboundEdge> inputs;
   int subscriber_count = 0;             // participants that read `topic`
+  std::optional<PlannedCut> cut;        // interface-Jacobian cut, if this node is on one
   const std::string& name() const { return spec->name; }
 };
 

@@ -13,7 +13,9 @@ namespace mechsim::transport {
 std::vector<std::string> available_vendors();
 
 // Creates the process's participant on a DDS domain. Throws std::runtime_error naming the
-// vendor when it is not compiled in or the participant cannot be created.
+// vendor when it is not compiled in or the participant cannot be created. "inproc" (always
+// built; not in available_vendors(): it connects only the participants of one process)
+// gives a participant of an in-process domain: a scene's nodes as threads (inproc_run.h).
 std::unique_ptr<Participant> create_participant(const std::string& vendor, int domain_id);
 
 // Removes what killed processes of any backend left on this host (Fast DDS: its

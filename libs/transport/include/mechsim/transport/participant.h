@@ -26,6 +26,8 @@ class SampleWriter {
   virtual ~SampleWriter() = default;
   // values: one per field of the topic type, in field order.
   virtual void write(const SampleHeader& header, std::span<const double> values) = 0;
+  // Readers matched with this writer, not counting mechsim tools' readers (recorder,
+  // `topic echo`; they carry USER_DATA "mechsim:tool", raw.h): what readiness waits for.
   virtual int matched_readers() const = 0;
   // Waits until every matched reader acknowledged what was written (before a node exits).
   virtual void flush(std::chrono::nanoseconds timeout) = 0;

@@ -1,5 +1,5 @@
 // The raw-CDR side of the transport seam, for tools that handle samples without knowing
-// their fields: the recorder (samples exactly as serialised on the wire), a future player
+// their fields: the recorder (samples exactly as serialised on the wire), the player
 // (publishes such bytes again), and the inspection commands (what is on a domain).
 //
 // A raw sample is the serialised sample with its 4-byte encapsulation header (CDR
@@ -67,6 +67,8 @@ class RawWriter {
   // std::invalid_argument when the bytes are not a valid sample of the writer's type.
   virtual void write(std::span<const std::byte> cdr) = 0;
   virtual int matched_readers() const = 0;
+  // Waits until every matched reader acknowledged what was written (before a player exits).
+  virtual void flush(std::chrono::nanoseconds timeout) = 0;
 };
 
 // What the built-in discovery topics (DCPSPublication, DCPSSubscription) say about one

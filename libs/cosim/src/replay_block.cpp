@@ -1,0 +1,71 @@
+#include "mechsim/cosim/replay_block.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace mechsim::cosim {
+
+ReplayBlock::ReplayBlock(const models::Block& replaced, const std::vector<int>& published_outputs, RecordedTopic recorded,
+                         const config::TimeSpec& time)
+    : models::Block(replaced.type_name() + " (replayed)"), recorded_(std::move(recorded)), t0_(time.start), h_(time.step) {
+  // The same inputs, so that the scene's edges map onto it unchanged (and the node waits
+  // for its partners exactly as the original did). No output feeds through: a recording
+  // does not depend on what the partners send now.
+  for (const auto& in : replaced.inputs()) declare_input(in.name, in.unit, in.default_value);
+  for (std::size_t f = 0; f < published_outputs.size(); ++f) {
+    if (published_outputs[f] < 0) continue;
+    const auto& out = replaced.outputs()[static_cast<std::size_t>(published_outputs[f])];
+    declare_output(out.name, out.unit);
+    field_of_output_.push_back(static_cast<int>(f));
+  }
+}
+
+std::vector<int> ReplayBlock::published_outputs() const {
+  std::vector<int> of_field;
+  for (std::size_t o = 0; o < field_of_output_.size(); ++o) {
+    const auto f = static_cast<std::size_t>(field_of_output_[o]);
+    if (of_field.size() <= f) of_field.resize(f + 1, -1);
+    of_field[f] = static_cast<int>(o);
+  }
+  return of_field;
+}
+
+void ReplayBlock::calc_outputs(double t, std::span<const double>, std::span<const double>, std::span<double> y) const {
+  // Outputs are asked for at the macro-step instants t_k = t0 + k H (computed from k), so
+  // rounding recovers k exactly.
+  const double k_real = std::round((t - t0_) / h_);
+  if (!(k_real >= 0) || k_real >= static_cast<double>(recorded_.rows.size()))
+    throw std::runtime_error("replay: the recording has no sample for t = " + std::to_string(t) + " s");
+  const auto& row = recorded_.rows[static_cast<std::size_t>(k_real)];
+  for (std::size_t o = 0; o < field_of_output_.size(); ++o) y[o] = row.at(static_cast<std::size_t>(field_of_output_[o]));
+}
+
+RecordedTopic recorded_topic_from_log(const OutputLog& log, const transport::TopicType& type, const std::string& path) {
+  RecordedTopic r;
+  std::vector<int> columns;
+  for (const auto& field : type.fields) {
+    const int c = log.column(field.name);
+    if (c < 0) throw std::runtime_error(path + ": no column '" + field.name + "' of " + type.idl_name);
+    columns.push_back(c);
+  }
+  r.rows.resize(log.rows());
+  for (std::size_t k = 0; k < log.rows(); ++k)
+    for (int c : columns) r.rows[k].push_back(log.data[static_cast<std::size_t>(c)][k]);
+  return r;
+}
+
+void replace_with_replay(PlannedNode& node, RecordedTopic recorded, const config::TimeSpec& time) {
+  const auto needed = static_cast<std::size_t>(time.steps()) + 1;
+  if (recorded.rows.size() < needed)
+    throw std::runtime_error("replay of '" + node.name() + "': the recording holds " +
+                             (recorded.rows.empty() ? std::string("no step") : "steps 0.." + std::to_string(recorded.rows.size() - 1)) +
+                             " of its topic, the scene needs steps 0.." + std::to_string(needed - 1));
+  auto replay = std::make_unique<ReplayBlock>(*node.block, node.published_outputs, std::move(recorded), time);
+  std::vector<int> published = replay->published_outputs();
+  published.resize(node.published_outputs.size(), -1);
+  node.published_outputs = std::move(published);
+  node.block = std::move(replay);
+}
+
+}  // namespace mechsim::cosim

@@ -1,0 +1,60 @@
+#include "replay_input.h"
+
+#include <map>
+#include <set>
+#include <stdexcept>
+
+#include "cdr_decoder.h"
+#include "mechsim/cosim/output_log.h"
+#include "mechsim/record/mcap_reader.h"
+
+namespace mechsim::launch {
+
+ReplayRequest parse_replay_request(const std::string& text) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0 || eq + 1 == text.size())
+    throw std::invalid_argument("--replay: expected NODE=FILE (a participant and an MCAP recording), got '" + text + "'");
+  return {text.substr(0, eq), text.substr(eq + 1)};
+}
+
+void write_replay_table(const std::string& recording, const cosim::PlannedNode& node, const config::TimeSpec& time,
+                        const std::string& table_path) {
+  const transport::TopicType& type = *node.type->publishes;
+  const recorder::MessageLayout* layout = recorder::find_layout(type.idl_name);
+  if (!layout) throw std::logic_error("no CDR layout for " + type.idl_name);
+  record::McapReader reader(recording);  // throws naming the file
+  std::set<std::uint16_t> channels;
+  for (const auto& [id, channel] : reader.channels())
+    if (channel.topic == node.topic) channels.insert(id);
+  if (channels.empty())
+    throw std::runtime_error(recording + ": no topic '" + node.topic + "' (what participant '" + node.name() +
+                             "' publishes); `mechsim bag info " + recording + "` lists what it holds");
+
+  std::map<std::uint64_t, std::vector<double>> rows;  // step -> field values
+  std::set<std::uint64_t> runs;
+  reader.for_each_message([&](const record::MessageView& m) {
+    if (!channels.count(m.channel_id)) return;
+    const recorder::DecodedSample s = recorder::decode_sample(m.data, *layout);
+    runs.insert(s.header.run_id);
+    std::vector<double> values;
+    for (const auto& v : s.values) values.push_back(recorder::as_number(v));
+    rows.emplace(s.header.step, std::move(values));
+  });
+  if (runs.size() > 1)
+    throw std::runtime_error(recording + ": topic '" + node.topic + "' holds samples of " + std::to_string(runs.size()) +
+                             " runs; replay needs a recording of one run");
+  const auto steps = static_cast<std::uint64_t>(time.steps());
+  for (std::uint64_t k = 0; k <= steps; ++k)
+    if (!rows.count(k))
+      throw std::runtime_error(recording + ": topic '" + node.topic + "' has no sample for step " + std::to_string(k) +
+                               " (the scene runs steps 0.." + std::to_string(steps) +
+                               (reader.truncated() ? "; the file is truncated: `mechsim record --recover` it" : "") + ")");
+
+  std::vector<std::string> columns{"t"};
+  for (const auto& f : type.fields) columns.push_back(f.name);
+  cosim::OutputLogWriter table(table_path, columns);
+  for (std::uint64_t k = 0; k <= steps; ++k) table.append(time.start + static_cast<double>(k) * time.step, rows[k]);
+  table.close();
+}
+
+}  // namespace mechsim::launch
