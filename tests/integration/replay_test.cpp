@@ -15,6 +15,7 @@
 
 #include "domain_lock.h"
 #include "mechsim/record/mcap_reader.h"
+#include "cdr_decoder.h"
 #include "player.h"
 #include "recorder.h"
 #include "run_fixture.h"

@@ -50,7 +50,7 @@ void write_replay_table(const std::string& recording, const cosim::PlannedNode& 
                                " (the scene runs steps 0.." + std::to_string(steps) +
                                (reader.truncated() ? "; the file is truncated: `mechsim record --recover` it" : "") + ")");
 
-  std::vector<std::string> columns{"t"};
+  std::vector<std::string> columns;  // the writer puts "t" first itself
   for (const auto& f : type.fields) columns.push_back(f.name);
   cosim::OutputLogWriter table(table_path, columns);
   for (std::uint64_t k = 0; k <= steps; ++k) table.append(time.start + static_cast<double>(k) * time.step, rows[k]);

@@ -22,7 +22,11 @@ void add_check_command(CLI::App& app, int& exit_code) {
         for (const auto& e : node.inputs)
           std::printf("  %12s <- %s (%s, %s)\n", "", e.topic.c_str(),
                       e.order == config::EdgeOrder::jacobi ? "jacobi" : "gauss_seidel",
-                      e.reconstruction == config::Reconstruction::hold ? "hold" : "linear");
+                      e.reconstruction == config::Reconstruction::hold     ? "hold"
+                      : e.reconstruction == config::Reconstruction::linear ? "linear"
+                                                                           : "quadratic");
+        if (node.cut)
+          std::printf("  %12s <> %s (interface_jacobian, %d levels)\n", "", node.cut->partner_topic.c_str(), node.cut->levels);
       }
       exit_code = 0;
     } catch (const config::ConfigError& e) {

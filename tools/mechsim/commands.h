@@ -26,6 +26,7 @@ void add_check_command(CLI::App& app, int& exit_code);
 void add_cam_design_command(CLI::App& app, int& exit_code);
 void add_motor_bode_command(CLI::App& app, int& exit_code);
 void add_slide_modes_command(CLI::App& app, int& exit_code);
+void add_cvt_map_command(CLI::App& app, int& exit_code);
 void add_record_command(CLI::App& app, int& exit_code);
 void add_play_command(CLI::App& app, int& exit_code);
 void add_bag_command(CLI::App& app, int& exit_code);

@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   mechsim::tools::add_cam_design_command(app, exit_code);
   mechsim::tools::add_motor_bode_command(app, exit_code);
   mechsim::tools::add_slide_modes_command(app, exit_code);
+  mechsim::tools::add_cvt_map_command(app, exit_code);
   mechsim::tools::add_record_command(app, exit_code);
   mechsim::tools::add_play_command(app, exit_code);
   mechsim::tools::add_bag_command(app, exit_code);

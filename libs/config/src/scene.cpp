@@ -1,3 +1,4 @@
+#include <algorithm>
 #include "mechsim/config/scene.h"
 
 #include <cctype>
@@ -10,6 +11,16 @@
 #include "mechsim/config/units.h"
 
 namespace mechsim::config {
+
+const std::vector<std::string>& reconstruction_names() {
+  static const std::vector<std::string> names{"hold", "linear", "quadratic"};
+  return names;
+}
+
+const std::vector<std::string>& solver_method_names() {
+  static const std::vector<std::string> names{"cvode_bdf", "cvode_adams", "arkode_erk", "arkode_dirk"};
+  return names;
+}
 
 const char* default_dds_vendor() { return MECHSIM_DEFAULT_DDS_VENDOR; }
 
@@ -55,7 +66,7 @@ TimeSpec parse_time(const ConfigNode& t) {
 SolverSpec parse_solver(const ConfigNode& s) {
   s.allow_only({"method", "rtol", "atol"});
   SolverSpec spec;
-  if (s.has("method")) spec.method = s.choice("method", {"cvode_bdf", "cvode_adams"});
+  if (s.has("method")) spec.method = s.choice("method", solver_method_names());
   if (s.has("rtol")) {
     spec.rtol = s.number("rtol");
     if (!(spec.rtol > 0 && spec.rtol < 1)) s.child("rtol").fail("expected a relative tolerance in (0, 1)");
@@ -168,8 +179,9 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
       if (c.has("order"))
         spec.order = c.choice("order", {"jacobi", "gauss_seidel"}) == "jacobi" ? EdgeOrder::jacobi : EdgeOrder::gauss_seidel;
       if (c.has("reconstruction")) {
-        const std::string r = c.choice("reconstruction", {"hold", "linear", "quadratic"});
-        spec.reconstruction = r == "hold" ? Reconstruction::hold : r == "linear" ? Reconstruction::linear : Reconstruction::quadratic;
+        const auto& names = reconstruction_names();
+        const std::string r = c.choice("reconstruction", names);
+        spec.reconstruction = static_cast<Reconstruction>(std::find(names.begin(), names.end(), r) - names.begin());
       }
       for (const auto& other : scene.connections)
         if (other.from == spec.from && other.to == spec.to) c.fail("expected each from -> to pair once (duplicate of " + other.key_path + ")");

@@ -218,8 +218,9 @@ ReferenceRun run_reference(ScenePlan& plan, double rtol, double atol) {
     run.log.data[0].push_back(t);
     for (std::size_t j = 0; j < y.size(); ++j) run.log.data[j + 1].push_back(y[j]);
   };
-  sample(time.start);
   const solve::InputFunction no_inputs = [](double, std::span<double>) {};
+  integrator.advance_to(time.start, no_inputs);  // sampled blocks: the t0 sample before the t0 outputs
+  sample(time.start);
   for (long k = 1; k <= n; ++k) {
     const double t = time.start + static_cast<double>(k) * time.step;
     integrator.advance_to(t, no_inputs);

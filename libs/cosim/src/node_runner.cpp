@@ -98,6 +98,13 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
     auto writer = participant.create_writer(node.topic, *node.type->publishes);
     std::vector<std::unique_ptr<transport::SampleReader>> readers;
     for (const auto& edge : node.inputs) readers.push_back(participant.create_reader(edge.topic, *edge.type));
+    // Interface-Jacobian cut: this side's predictions out, the partner's in.
+    std::unique_ptr<transport::SampleWriter> cut_writer;
+    std::unique_ptr<transport::SampleReader> cut_reader;
+    if (node.cut) {
+      cut_writer = participant.create_writer(node.cut->topic, *node.cut->type);
+      cut_reader = participant.create_reader(node.cut->partner_topic, *node.cut->type);
+    }
 
     NodeStepper stepper(node, scene.time);
     // Events the block reports (lift-off, landing, ...): JSON lines for the launcher's summary.
@@ -117,7 +124,7 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
       if (writer->matched_readers() < node.subscriber_count) return false;
       for (const auto& r : readers)
         if (r->matched_writers() < 1) return false;
-      return true;
+      return !node.cut || (cut_writer->matched_readers() >= 1 && cut_reader->matched_writers() >= 1);
     };
     bool ready = false, started = false;
     transport::ControlMessage start_message;
@@ -153,6 +160,15 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
         while (readers[e]->take(h, received))
           if (h.run_id == options.run_id && h.step + 2 >= stepper.step()) stepper.channel(e).add(h.step, received);
       }
+      transport::SampleHeader h;
+      while (cut_reader && cut_reader->take(h, received))
+        if (h.run_id == options.run_id) stepper.add_partner_prediction(h.step, received);
+    };
+    std::vector<double> prediction;
+    auto predict_if_due = [&] {
+      if (!stepper.prediction_due()) return;
+      stepper.predict(prediction);
+      cut_writer->write({options.run_id, stepper.step(), stepper.time()}, prediction);
     };
     auto check_control = [&] {
       while (auto c = control->take())
@@ -218,6 +234,7 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
       const auto until = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(limit_s));
       while (Clock::now() < until) {
         drain();
+        predict_if_due();
         if (initialised ? stepper.can_step() : stepper.can_initialise()) return true;
         sched_yield();
       }
@@ -230,6 +247,7 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
         publish();
         initialised = true;
       }
+      predict_if_due();
       while (initialised && stepper.can_step()) {
         stepper.step(values);
         publish();
@@ -237,6 +255,7 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
         for (const auto& ev : node.block->take_event_log()) log_event(ev, events_file);
         if (stepper.finished()) break;
         drain();
+        predict_if_due();
         beat.tick();
       }
       if (stepper.finished()) break;
@@ -265,6 +284,7 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
       }
     }
     writer->flush(std::chrono::seconds(10));
+    if (cut_writer) cut_writer->flush(std::chrono::seconds(10));
     copy_stats(stepper.solver_stats(), beat.status());
     beat.set_state(transport::NodeState::done);
     std::printf("done: %llu steps, t = %.9g s, %.3f s wall\n", static_cast<unsigned long long>(stepper.step()),

@@ -8,7 +8,9 @@ namespace mechsim::cosim {
 
 solve::SolverOptions solver_options(const config::SolverSpec& spec) {
   solve::SolverOptions o;
-  o.method = spec.method == "cvode_adams" ? solve::Method::cvode_adams : solve::Method::cvode_bdf;
+  // config::solver_method_names() lists the methods in the order of solve::Method.
+  const auto& names = config::solver_method_names();
+  o.method = static_cast<solve::Method>(std::find(names.begin(), names.end(), spec.method) - names.begin());
   o.rtol = spec.rtol;
   o.atol = spec.atol;
   return o;
@@ -97,6 +99,10 @@ void NodeStepper::initialise(std::vector<double>& topic_values) {
   if (!can_initialise()) throw std::logic_error("initialise before the Gauss-Seidel inputs of step 0 arrived");
   initial_inputs(u_);
   integrator_ = std::make_unique<solve::BlockIntegrator>(*node_.block, solver_options(node_.spec->solver), t0_, x_);
+  // A sampled block takes its t0 sample now, so that its step-0 outputs are what it holds
+  // over [t0, t1], as in the reference (which samples at t0 before its first step).
+  if (node_.block->sample_time() > 0)
+    integrator_->advance_to(t0_, [this](double, std::span<double> u) { std::copy(u_.begin(), u_.end(), u.begin()); });
   node_.block->calc_outputs(t0_, integrator_->state(), u_, y_);
   publishable(topic_values);
   k_ = 0;
@@ -119,6 +125,7 @@ void NodeStepper::step(std::vector<double>& topic_values) {
         coupling::solve_torque_levels({cut.stiffness, cut.damping}, t_next - time(), plus, minus);
     cut_side_->advance(*integrator_, t_next, inputs, levels);
     assumed_torque_ = levels.back();
+    end_torque_ = levels.size() > 1 ? 1.5 * levels.back() - 0.5 * levels[levels.size() - 2] : levels.back();
     own_prediction_.reset();
     partner_predictions_.erase(partner_predictions_.begin(), partner_predictions_.upper_bound(k));
   } else {
@@ -129,8 +136,9 @@ void NodeStepper::step(std::vector<double>& topic_values) {
     channels_[e].values_at_step_end(k, scratch_);
     for (const auto& [field, input] : node_.inputs[e].field_to_input) u_[input] = scratch_[field];
   }
-  // The published torque at t_k+1 is the step's last level (the same on both sides).
-  if (cut_side_) u_[node_.cut->torque_input] = assumed_torque_;
+  // The torque published at t_k+1: the last two levels (means over their sub-intervals)
+  // extrapolated to the step's end; the same on both sides.
+  if (cut_side_) u_[node_.cut->torque_input] = end_torque_;
   node_.block->calc_outputs(t_next, integrator_->state(), u_, y_);
   publishable(topic_values);
   k_ = k + 1;

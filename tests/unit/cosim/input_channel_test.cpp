@@ -25,6 +25,27 @@ TEST(InputChannel, JacobiHoldNeedsStepKAndHoldsIt) {
   EXPECT_EQ(v[0], 3.0);
 }
 
+TEST(InputChannel, JacobiQuadraticIsExactOnAParabolaAndStartsAsHoldThenLinear) {
+  InputChannel c(EdgeOrder::jacobi, Reconstruction::quadratic, 0.0, kH);
+  auto y = [](double step) { return 1.0 + 2.0 * step + 3.0 * step * step; };  // a parabola in t / H
+  std::vector<double> v;
+  c.add(0, {y(0)});
+  c.values_at(0.05, 0, v);
+  EXPECT_EQ(v[0], y(0));  // one sample: hold
+  c.add(1, {y(1)});
+  c.values_at(0.15, 1, v);
+  EXPECT_NEAR(v[0], y(1) + 0.5 * (y(1) - y(0)), 1e-12);  // two samples: linear
+  c.add(2, {y(2)});
+  c.values_at(0.25, 2, v);  // three: the parabola itself, halfway into step 2 -> 3
+  EXPECT_NEAR(v[0], y(2.5), 1e-12);
+  c.values_at_step_end(2, v);
+  EXPECT_NEAR(v[0], y(3), 1e-12);
+  c.discard_before(3);  // step 3 -> 4 still needs steps 1, 2 (and 3)
+  c.add(3, {y(3)});
+  c.values_at(0.35, 3, v);
+  EXPECT_NEAR(v[0], y(3.5), 1e-12);
+}
+
 TEST(InputChannel, JacobiLinearExtrapolatesFromTwoSamplesAndStartsAsHold) {
   InputChannel c(EdgeOrder::jacobi, Reconstruction::linear, 0.0, kH);
   c.add(0, {1.0});

@@ -57,11 +57,16 @@ TEST_F(RawCdr, EveryDataTypeDecodesToTheValuesTheTypedWriterWrote) {
     const std::string name = topic(type->idl_name.substr(type->idl_name.rfind(':') + 1));
     auto writer = typed_->create_writer(name, *type);
     auto reader = raw_->create_reader(name, type->idl_name);
-    ASSERT_TRUE(wait_until(*raw_, [&] { return writer->matched_readers() == 1 && reader->matched_writers() == 1; }));
+    // A raw reader is a tool's reader: the typed writer does not count it as a partner
+    // (matched_readers() stays 0), so write until the reader has a sample.
+    ASSERT_TRUE(wait_until(*raw_, [&] { return reader->matched_writers() == 1; }));
+    EXPECT_EQ(writer->matched_readers(), 0);
     const std::vector<double> values = sample_values(*type, 3);
-    writer->write({0xfeedfacecafebeefULL, 1234, 1.234}, values);
     transport::RawSample s;
-    ASSERT_TRUE(wait_until(*raw_, [&] { return reader->take(s); }));
+    ASSERT_TRUE(wait_until(*raw_, [&] {
+      writer->write({0xfeedfacecafebeefULL, 1234, 1.234}, values);
+      return reader->take(s);
+    }));
     // Cyclone writes @final types as XCDR1 (docs/dds.md); little endian on this machine.
     ASSERT_GE(s.cdr.size(), 4u);
     EXPECT_EQ(std::to_integer<int>(s.cdr[0]), 0x00);
@@ -142,16 +147,23 @@ TEST_F(RawCdr, RawBytesPublishedAgainArriveUnchangedAndTypedReadersUnderstandThe
   auto raw_out = raw_->create_writer(replayed, "ServoCommand");
   auto typed_back = typed_->create_reader(replayed, type);
   auto raw_back = raw_->create_reader(replayed, "ServoCommand");
+  // Typed writers do not count tools' (raw) readers in matched_readers(); a raw writer
+  // counts every reader. Samples for tools' readers are written until they arrive.
   ASSERT_TRUE(wait_until(*raw_, [&] {
-    return writer->matched_readers() == 1 && raw_in->matched_writers() == 1 && raw_out->matched_readers() == 2 &&
-           typed_back->matched_writers() == 1 && raw_back->matched_writers() == 1;
+    return raw_in->matched_writers() == 1 && raw_out->matched_readers() == 2 && typed_back->matched_writers() == 1 &&
+           raw_back->matched_writers() == 1;
   }));
+  EXPECT_EQ(writer->matched_readers(), 0);
   const std::vector<double> values = sample_values(type, 5);
-  writer->write({5, 6, 0.006}, values);
   transport::RawSample first, again;
-  ASSERT_TRUE(wait_until(*raw_, [&] { return raw_in->take(first); }));
-  raw_out->write(first.cdr);
-  ASSERT_TRUE(wait_until(*raw_, [&] { return raw_back->take(again); }));
+  ASSERT_TRUE(wait_until(*raw_, [&] {
+    writer->write({5, 6, 0.006}, values);
+    return raw_in->take(first);
+  }));
+  ASSERT_TRUE(wait_until(*raw_, [&] {
+    raw_out->write(first.cdr);
+    return raw_back->take(again);
+  }));
   EXPECT_EQ(again.cdr, first.cdr);
   transport::SampleHeader h;
   std::vector<double> got;

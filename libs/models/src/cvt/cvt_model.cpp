@@ -528,6 +528,12 @@ void CvtModel::finish(CvtResult& r, const BeltShape& b) {
     r.P_loss_belt = 0.0;
     r.eta_PB = 1.0;  // no slip power at standstill
   }
+  if (!(r.eta_PB > 0.0)) {
+    // A tiny T_C at speed: the centrifugally clamped belt's slip loss exceeds T_C ω_C, so the
+    // output torque would reverse. Outside the model: flagged, no efficiency.
+    r.flags |= kTorqueReversal;
+    r.eta_PB = kNaN;
+  }
   r.mu_D_required = std::cos(p.beta_D) * Tr / (p.lambda * r.F_K);
   r.T_C_capacity = p.r_C * p.lambda * p.mu_D * r.F_K / std::cos(p.beta_D);
   for (int i = 0; i < 4; ++i)

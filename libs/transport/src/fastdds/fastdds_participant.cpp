@@ -101,10 +101,10 @@ class ToolReaderTracker final : public dds::DomainParticipantListener {
     const bool tool = data.size() == tag.size() && std::equal(data.begin(), data.end(), tag.begin(),
                                                               [](auto a, char b) { return static_cast<char>(a) == b; });
     std::lock_guard lock(mutex_);
-    if (info.status == Status::REMOVED_READER || info.status == Status::IGNORED_READER || !tool)
+    if (info.status == Status::REMOVED_READER || !tool)
       readers_.erase(info.info.guid());
     else
-      readers_[info.info.guid()] = info.info.topicName().to_string();
+      readers_[info.info.guid()] = info.info.topicName().c_str();
   }
   int on_topic(const std::string& topic) const {
     std::lock_guard lock(mutex_);

@@ -25,9 +25,14 @@ struct TimeSpec {
 
 enum class EdgeOrder { jacobi, gauss_seidel };
 enum class Reconstruction { hold, linear, quadratic };
+// The names of Reconstruction, in enum order: what a scene's `reconstruction:` accepts and
+// what `mechsim bench` sweeps (a new enum value needs only its name here).
+const std::vector<std::string>& reconstruction_names();
+// The node solvers a scene's `solver: {method}` accepts (libs/solve Method), in its order.
+const std::vector<std::string>& solver_method_names();
 
 struct SolverSpec {
-  std::string method = "cvode_bdf";  // cvode_bdf | cvode_adams
+  std::string method = "cvode_bdf";  // one of solver_method_names()
   double rtol = 1e-6;
   double atol = 1e-9;
 };

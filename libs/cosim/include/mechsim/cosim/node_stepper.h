@@ -65,7 +65,7 @@ class NodeStepper {
   std::unique_ptr<coupling::InterfaceSide> cut_side_;
   std::optional<coupling::InterfacePrediction> own_prediction_;
   std::map<std::uint64_t, coupling::InterfacePrediction> partner_predictions_;
-  double assumed_torque_ = 0.0;
+  double assumed_torque_ = 0.0, end_torque_ = 0.0;
   double t0_, h_;
   std::uint64_t n_steps_;
   std::vector<InputChannel> channels_;

@@ -58,7 +58,8 @@ enum CvtFlag : unsigned {
   kStressExceeded = 1u << 2,         // a contact stress above σ̄_HZ
   kLinkShift = 1u << 3,              // q_D or q_C clipped to μ_E: links shift at the transition ends
   kZeroTorque = 1u << 4,             // T_C = 0: unloaded belt (η_PB = 1, F_K = 0)
-  kTorqueReversal = 1u << 5,         // T_C < 0: power from the disc side, outside the model
+  kTorqueReversal = 1u << 5,         // T_C < 0, or T_C so small that the slip loss exceeds T_C ω_C:
+                                     // power from the disc side, outside the model
   kZeroSpeed = 1u << 6,              // ω_C = 0: no slip power, η_PB := 1
   kNoSolution = 1u << 7,             // the §3.8 search found no push force (F_P0 > 1000·T/r)
 };
