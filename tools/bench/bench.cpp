@@ -1,0 +1,938 @@
+#include "bench.h"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <memory>
+#include <ostream>
+#include <set>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "json_io.h"
+#include "mechsim/config/scene.h"
+#include "mechsim/config/units.h"
+#include "mechsim/cosim/composer.h"
+#include "mechsim/cosim/inproc_run.h"
+#include "mechsim/cosim/output_log.h"
+#include "mechsim/cosim/scene_plan.h"
+#include "plot.h"
+#include "provenance.h"
+#include "reference_accuracy.h"
+#include "run_report.h"
+#include "signal_compare.h"
+
+namespace mechsim::bench {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+const double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// "250 us", "1 ms", "2.5 ms": exact enough for the scene grammar (9 significant digits).
+std::string time_text(double s) {
+  char buf[64];
+  if (s < 1e-3)
+    std::snprintf(buf, sizeof buf, "%.9g us", s * 1e6);
+  else if (s < 1.0)
+    std::snprintf(buf, sizeof buf, "%.9g ms", s * 1e3);
+  else
+    std::snprintf(buf, sizeof buf, "%.9g s", s);
+  return buf;
+}
+
+std::string num(double v, const char* fmt = "%.3g") {
+  if (!std::isfinite(v)) return "-";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, fmt, v);
+  return buf;
+}
+
+json finite_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+// --- scheme variants ---------------------------------------------------------------
+
+YAML::Node connection(const std::string& from, const std::string& to) {
+  YAML::Node c(YAML::NodeType::Map);
+  c["from"] = from;
+  c["to"] = to;
+  return c;
+}
+
+}  // namespace
+
+std::vector<SchemeVariant> scheme_variants(const YAML::Node& scene_document) {
+  std::vector<SchemeVariant> out;
+  const YAML::Node conns = scene_document["connections"];
+  if (!conns || !conns.IsSequence() || conns.size() == 0) return out;
+
+  // The connection that crosses a coupling element (at most one is handled: the shipped
+  // scenes have one), and its reverse direction if the scene lists it.
+  int cut = -1, reverse = -1;
+  for (std::size_t i = 0; i < conns.size(); ++i)
+    if (conns[i]["coupling"]) cut = static_cast<int>(i);
+  auto s = [](const YAML::Node& n, const char* key, const std::string& def = "") {
+    return n[key] ? n[key].as<std::string>() : def;
+  };
+  auto clone = [&] { return YAML::Clone(scene_document); };
+  // The scene as shipped.
+  {
+    SchemeVariant v;
+    v.name = "shipped";
+    v.family = "shipped";
+    v.shipped = true;
+    v.document = clone();
+    out.push_back(v);
+  }
+
+  if (cut >= 0) {
+    const std::string a = s(conns[cut], "from"), b = s(conns[cut], "to");
+    for (std::size_t i = 0; i < conns.size(); ++i)
+      if (s(conns[i], "from") == b && s(conns[i], "to") == a) reverse = static_cast<int>(i);
+    YAML::Node element = YAML::Clone(conns[cut]["coupling"]);
+    // The cut rewritten; every other connection as shipped.
+    auto with_cut = [&](const std::vector<YAML::Node>& cut_connections) {
+      YAML::Node doc = clone();
+      YAML::Node list(YAML::NodeType::Sequence);
+      for (std::size_t i = 0; i < conns.size(); ++i) {
+        if (static_cast<int>(i) == cut) {
+          for (const auto& c : cut_connections) list.push_back(c);
+        } else if (static_cast<int>(i) != reverse) {
+          list.push_back(YAML::Clone(conns[i]));
+        }
+      }
+      doc["connections"] = list;
+      return doc;
+    };
+    for (const char* rec : {"hold", "linear", "quadratic"}) {
+      YAML::Node e = YAML::Clone(element);
+      e["scheme"] = "compliant";
+      e.remove("levels");
+      YAML::Node fwd = connection(a, b), back = connection(b, a);
+      fwd["order"] = "jacobi";
+      fwd["reconstruction"] = rec;
+      fwd["coupling"] = e;
+      back["order"] = "jacobi";
+      back["reconstruction"] = rec;
+      SchemeVariant v;
+      v.name = std::string("compliant/") + rec;
+      v.family = "compliant";
+      v.zero_order_hold_jacobi = std::string(rec) == "hold";
+      v.document = with_cut({fwd, back});
+      out.push_back(v);
+    }
+    for (int levels : {1, 2, 10}) {
+      YAML::Node e = YAML::Clone(element);
+      e["scheme"] = "interface_jacobian";
+      e["levels"] = levels;
+      YAML::Node fwd = connection(a, b);
+      fwd["coupling"] = e;
+      SchemeVariant v;
+      v.name = "interface_jacobian/" + std::to_string(levels);
+      v.family = "interface_jacobian";
+      v.document = with_cut({fwd});
+      out.push_back(v);
+    }
+    return out;
+  }
+
+  // No coupling element: the order and reconstruction of every connection.
+  bool has_gs = false;
+  for (const auto& c : conns) has_gs = has_gs || s(c, "order", "jacobi") == "gauss_seidel";
+  for (const char* rec : {"hold", "linear", "quadratic"}) {
+    YAML::Node doc = clone();
+    for (auto c : doc["connections"]) {
+      c["order"] = "jacobi";
+      c["reconstruction"] = rec;
+    }
+    SchemeVariant v;
+    v.name = std::string("jacobi/") + rec;
+    v.family = "jacobi";
+    v.zero_order_hold_jacobi = std::string(rec) == "hold";
+    v.document = doc;
+    out.push_back(v);
+  }
+  for (const char* rec : {"hold", "linear", "quadratic"}) {
+    // The scene's Gauss-Seidel edges (or, without any, its first connection) first; every
+    // Jacobi edge reconstructed with `rec`.
+    YAML::Node doc = clone();
+    std::size_t i = 0;
+    for (auto c : doc["connections"]) {
+      const bool gs = has_gs ? s(c, "order", "jacobi") == "gauss_seidel" : i == 0;
+      ++i;
+      if (gs) {
+        c["order"] = "gauss_seidel";
+        c.remove("reconstruction");
+      } else {
+        c["order"] = "jacobi";
+        c["reconstruction"] = rec;
+      }
+    }
+    SchemeVariant v;
+    v.name = std::string("gauss_seidel/") + rec;
+    v.family = "gauss_seidel";
+    v.document = doc;
+    out.push_back(v);
+  }
+  return out;
+}
+
+double fit_order(const std::vector<double>& h, const std::vector<double>& error) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  int n = 0;
+  for (std::size_t i = 0; i < h.size() && i < error.size(); ++i) {
+    if (!(error[i] > 0) || !std::isfinite(error[i]) || !(h[i] > 0)) continue;
+    const double x = std::log(h[i]), y = std::log(error[i]);
+    sx += x;
+    sy += y;
+    sxx += x * x;
+    sxy += x * y;
+    ++n;
+  }
+  if (n < 3) return kNaN;
+  const double d = n * sxx - sx * sx;
+  return d > 0 ? (n * sxy - sx * sy) / d : kNaN;
+}
+
+std::vector<double> parse_steps(const std::string& text) {
+  std::vector<double> out;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    const auto b = item.find_first_not_of(" \t"), e = item.find_last_not_of(" \t");
+    if (b == std::string::npos) continue;
+    item = item.substr(b, e - b + 1);
+    double v = 0;
+    try {
+      v = config::parse_quantity_as(item, config::dim::time);
+    } catch (const std::exception& ex) {
+      throw std::invalid_argument("--steps: '" + item + "': " + ex.what());
+    }
+    if (!(v > 0)) throw std::invalid_argument("--steps: '" + item + "': expected a positive time");
+    out.push_back(v);
+  }
+  if (out.empty()) throw std::invalid_argument("--steps: expected a comma-separated list of times, e.g. '25 us,50 us'");
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+namespace {
+
+// --- one bench -----------------------------------------------------------------------
+
+struct RunSpec {
+  int variant = 0;
+  double h = 0;
+  std::string solver;
+  double rtol = 0;
+  std::string sweep;  // "solver" or "tolerance"
+};
+
+struct Reference {
+  cosim::ReferenceRun run;
+  cosim::ReferenceAccuracy accuracy;
+  json accuracy_json;
+  std::unique_ptr<config::Scene> scene;
+  std::string error;  // the reference could not be computed
+};
+
+struct RunResult {
+  std::string status;  // ok, diverged, failed, refused
+  std::string reason;
+  double wall_time_s = kNaN;
+  long macro_steps = 0;
+  json solver;
+  json signals = json::object();
+  json report;
+  double rms_rel = kNaN, max_rel = kNaN;  // worst compared signal; NaN when below reference accuracy
+  bool rms_below_reference = false, max_below_reference = false;
+  double rms_rel_bound = kNaN;  // the reference's own error where the value is refused
+  std::string worst_signal;
+  std::string run_dir;
+};
+
+class Bench {
+ public:
+  Bench(const BenchOptions& o, std::ostream& out) : opt_(o), out_(out) {}
+  int run();
+
+ private:
+  std::vector<std::string> run_overrides(const RunSpec& r, bool with_solver) const;
+  Reference& reference(int variant, double h);
+  RunResult run_inproc_point(const RunSpec& r, const std::string& run_dir);
+  void compare(const config::Scene& scene, const Reference& ref, const std::vector<std::string>& participants,
+               const std::function<std::string(const std::string&)>& log_path, RunResult& res);
+  json dds_check(const RunSpec& r, const RunResult& inproc);
+  json row_json(const RunSpec& r, const RunResult& res) const;
+  void plots(const std::vector<RunSpec>& specs, const std::vector<RunResult>& results, const json& orders);
+
+  BenchOptions opt_;
+  std::ostream& out_;
+  YAML::Node doc_;
+  std::string scene_name_;
+  double h0_ = 0;
+  std::vector<SchemeVariant> variants_;
+  std::vector<std::string> variant_files_;
+  std::vector<std::string> participants_, sampled_;
+  std::map<std::pair<std::string, double>, std::unique_ptr<Reference>> refs_;
+  std::uint64_t run_counter_ = 0;
+};
+
+std::vector<std::string> Bench::run_overrides(const RunSpec& r, bool with_solver) const {
+  std::vector<std::string> o = opt_.overrides;
+  o.push_back("mode=lockstep");
+  o.push_back("time.step=" + time_text(r.h));
+  // A sampled block whose sample time is the macro step keeps sampling at each exchange.
+  for (const auto& p : sampled_) o.push_back("participants." + p + ".params.sample_time=" + time_text(r.h));
+  if (with_solver)
+    for (const auto& p : participants_) {
+      o.push_back("participants." + p + ".solver.method=" + r.solver);
+      o.push_back("participants." + p + ".solver.rtol=" + num(r.rtol, "%.3g"));
+      o.push_back("participants." + p + ".solver.atol=" + num(r.rtol * 1e-3, "%.3g"));
+    }
+  return o;
+}
+
+// The reference at H for the variant's coupling element (the composer evaluates the element
+// once from both sides, whatever the reconstruction, order or levels: one reference per
+// element scheme and H).
+Reference& Bench::reference(int variant, double h) {
+  std::string key = "none";
+  const YAML::Node conns = variants_[variant].document["connections"];
+  for (const auto& c : conns)
+    if (c["coupling"]) key = c["coupling"]["scheme"] ? c["coupling"]["scheme"].as<std::string>() : "?";
+  auto& slot = refs_[{key, h}];
+  if (slot) return *slot;
+  slot = std::make_unique<Reference>();
+  RunSpec r{variant, h, "", 0, ""};
+  try {
+    slot->scene = std::make_unique<config::Scene>(config::load_scene(variant_files_[variant], run_overrides(r, false)));
+    cosim::ScenePlan plan = cosim::ScenePlan::build(*slot->scene);
+    slot->run = cosim::run_reference(plan);
+    slot->accuracy = cosim::estimate_reference_error(*slot->scene, slot->run);
+    slot->accuracy_json = launch::reference_accuracy_json(*slot->scene, slot->run, slot->accuracy);
+  } catch (const std::exception& e) {
+    slot->error = e.what();
+  }
+  return *slot;
+}
+
+void Bench::compare(const config::Scene& scene, const Reference& ref, const std::vector<std::string>& participants,
+                    const std::function<std::string(const std::string&)>& log_path, RunResult& res) {
+  std::map<std::string, cosim::OutputLog> logs;
+  for (const auto& p : participants) logs[p] = cosim::read_output_log(log_path(p));
+  const auto& t = ref.run.log.data[0];
+  double worst_rms = -1, worst_max = -1;
+  for (const auto& sig : scene.compare) {
+    const std::string name = sig.full_name();
+    const auto& log = logs.at(sig.participant);
+    const int cc = log.column(sig.output), rc = ref.run.log.column(name);
+    if (cc < 0 || rc < 0) continue;
+    const auto& c = log.data[cc];
+    const auto& r = ref.run.log.data[rc];
+    if (c.size() != r.size()) {
+      res.status = "failed";
+      res.reason = name + ": node log has " + std::to_string(c.size()) + " rows, reference " + std::to_string(r.size());
+      return;
+    }
+    const bool c_nan = std::all_of(c.begin(), c.end(), [](double v) { return std::isnan(v); });
+    const bool r_nan = std::all_of(r.begin(), r.end(), [](double v) { return std::isnan(v); });
+    if (c_nan || r_nan) {
+      res.signals[name] = {{"computed", false}};  // a field this configuration does not compute
+      continue;
+    }
+    const launch::SignalError e = launch::compare_signal(t, c, r);
+    const double ref_max = ref.accuracy.max_abs_of(name), ref_rms = ref.accuracy.rms_abs_of(name);
+    const double scale = e.range > 0 ? e.range : 1.0;
+    // Refused when not larger than the reference's own error: such a figure says more about
+    // the reference than about the co-simulation.
+    const bool max_below = e.finite && !(e.max_abs > ref_max);
+    const bool rms_below = e.finite && !(e.rms_abs > ref_rms);
+    const double inf = std::numeric_limits<double>::infinity();
+    const double max_rel = e.finite ? e.max_rel : inf, rms_rel = e.finite ? e.rms_rel : inf;
+    res.signals[name] = {
+        {"max_abs_error", max_below ? json(nullptr) : finite_or_null(e.max_abs)},
+        {"rms_abs_error", rms_below ? json(nullptr) : finite_or_null(e.rms_abs)},
+        {"max_rel_error", max_below ? json(nullptr) : finite_or_null(max_rel)},
+        {"rms_rel_error", rms_below ? json(nullptr) : finite_or_null(rms_rel)},
+        {"below_reference_accuracy", {{"max", max_below}, {"rms", rms_below}}},
+        {"reference_error", {{"max_abs", ref_max}, {"rms_abs", ref_rms}}},
+        {"reference_range", e.range},
+        {"t_of_max_error_s", e.t_of_max},
+        {"finite", e.finite}};
+    // The worst signal: a refused one counts with its bound (the reference's error).
+    const double rms_value = rms_below ? ref_rms / scale : rms_rel;
+    const double max_value = max_below ? ref_max / scale : max_rel;
+    if (rms_value > worst_rms) {
+      worst_rms = rms_value;
+      res.rms_below_reference = rms_below;
+      res.rms_rel = rms_below ? kNaN : rms_rel;
+      res.rms_rel_bound = rms_below ? rms_value : kNaN;
+      res.worst_signal = name;
+    }
+    if (max_value > worst_max) {
+      worst_max = max_value;
+      res.max_below_reference = max_below;
+      res.max_rel = max_below ? kNaN : max_rel;
+    }
+  }
+  auto cosim_series = [&](const config::SignalRef& r) -> std::span<const double> {
+    auto it = logs.find(r.participant);
+    if (it == logs.end()) return {};
+    const int c = it->second.column(r.output);
+    return c < 0 ? std::span<const double>{} : std::span<const double>(it->second.data[c]);
+  };
+  const launch::SeriesLookup reference_lookup = [&](const config::SignalRef& r) -> std::span<const double> {
+    const int c = ref.run.log.column(r.full_name());
+    return c < 0 ? std::span<const double>{} : std::span<const double>(ref.run.log.data[c]);
+  };
+  try {
+    res.report = launch::report_figures(scene, t, cosim_series, &reference_lookup);
+  } catch (const std::exception& e) {
+    res.report = {{"error", e.what()}};
+  }
+}
+
+RunResult Bench::run_inproc_point(const RunSpec& r, const std::string& run_dir) {
+  RunResult res;
+  res.run_dir = run_dir;
+  Reference& ref = reference(r.variant, r.h);
+  if (!ref.error.empty()) {
+    res.status = "refused";
+    res.reason = ref.error;
+    return res;
+  }
+  std::unique_ptr<config::Scene> scene;
+  try {
+    scene = std::make_unique<config::Scene>(config::load_scene(variant_files_[r.variant], run_overrides(r, true)));
+    cosim::ScenePlan::build(*scene);  // validation (run_inproc builds its own)
+  } catch (const std::exception& e) {
+    res.status = "refused";
+    res.reason = e.what();
+    return res;
+  }
+  res.macro_steps = scene->time.steps();
+  fs::create_directories(run_dir);
+  cosim::InprocRunOptions io;
+  io.run_dir = run_dir;
+  io.run_id = ++run_counter_;
+  cosim::InprocRunResult ir;
+  // Wall time of the whole in-process run, as measured here: thread start, readiness and
+  // the steps (run_inproc's own figure polls at 20 ms, too coarse for short runs).
+  const auto t0 = Clock::now();
+  try {
+    ir = cosim::run_inproc(*scene, io);
+  } catch (const std::exception& e) {
+    res.status = "refused";
+    res.reason = e.what();
+    return res;
+  }
+  res.wall_time_s = seconds_since(t0);
+  long steps = 0, rhs = 0, etf = 0, nlf = 0, roots = 0;
+  for (const auto& n : ir.nodes) {
+    steps += n.last.solver_steps;
+    rhs += n.last.rhs_evals;
+    etf += n.last.error_test_failures;
+    nlf += n.last.nonlinear_failures;
+    roots += n.last.roots_found;
+  }
+  res.solver = {{"steps", steps}, {"rhs_evals", rhs}, {"error_test_failures", etf}, {"nonlinear_failures", nlf},
+                {"roots_found", roots}};
+  if (!ir.ok) {
+    res.status = ir.diverged ? "diverged" : "failed";
+    res.reason = ir.reason;
+    return res;
+  }
+  res.status = "ok";
+  try {
+    compare(*scene, ref, participants_, [&](const std::string& p) { return run_dir + "/" + p + ".outputs.bin"; }, res);
+  } catch (const std::exception& e) {
+    res.status = "failed";
+    res.reason = std::string("comparison: ") + e.what();
+  }
+  if (res.status == "ok" && !std::isfinite(res.rms_rel) && !res.rms_below_reference) res.status = "diverged";
+  return res;
+}
+
+std::string shell_quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+bool same_bytes(const std::string& a, const std::string& b) {
+  std::ifstream fa(a, std::ios::binary), fb(b, std::ios::binary);
+  if (!fa || !fb) return false;
+  std::string sa((std::istreambuf_iterator<char>(fa)), {}), sb((std::istreambuf_iterator<char>(fb)), {});
+  return sa == sb;
+}
+
+// The same run as real node processes through `mechsim launch`, its error as the launcher
+// reports it, and whether every node's output log equals the in-process run's byte for byte.
+json Bench::dds_check(const RunSpec& r, const RunResult& inproc) {
+  const std::string exe = opt_.mechsim_exe.empty() ? fs::read_symlink("/proc/self/exe").string() : opt_.mechsim_exe;
+  const std::string dir = opt_.work_dir + "/dds-" + std::to_string(++run_counter_);
+  fs::create_directories(dir);
+  std::string cmd = shell_quote(exe) + " launch " + shell_quote(variant_files_[r.variant]);
+  for (const auto& o : run_overrides(r, true)) cmd += " --set " + shell_quote(o);
+  cmd += " --json " + shell_quote(dir + "/summary.json") + " --runs-dir " + shell_quote(dir) + " --no-plot --no-progress";
+  cmd += " >" + shell_quote(dir + "/launch.log") + " 2>&1";
+  const auto t0 = Clock::now();
+  const int rc = std::system(cmd.c_str());
+  const double elapsed = seconds_since(t0);
+  json out{{"scheme", variants_[r.variant].name}, {"step_s", r.h}, {"solver", r.solver}, {"rtol", r.rtol},
+           {"launch_exit", WIFEXITED(rc) ? WEXITSTATUS(rc) : -1}, {"process_time_s", elapsed}};
+  json summary;
+  try {
+    std::ifstream f(dir + "/summary.json");
+    summary = json::parse(f);
+  } catch (const std::exception& e) {
+    out["status"] = "failed";
+    out["reason"] = "no summary from mechsim launch (see " + dir + "/launch.log)";
+    return out;
+  }
+  out["status"] = summary.value("status", "?");
+  out["wall_time_s"] = summary.value("wall_time_s", kNaN);
+  out["inproc_wall_time_s"] = finite_or_null(inproc.wall_time_s);
+  const std::string run_dir = summary.value("run_dir", "");
+  bool identical = !run_dir.empty() && inproc.status == "ok";
+  json nodes = json::object();
+  for (const auto& p : participants_) {
+    const bool same = same_bytes(inproc.run_dir + "/" + p + ".outputs.bin", run_dir + "/" + p + ".outputs.bin");
+    nodes[p] = same;
+    identical = identical && same;
+  }
+  out["outputs_identical"] = identical;
+  out["nodes_identical"] = nodes;
+  // The launcher's figures next to the bench's (the same code computes both).
+  json diff = json::object();
+  double worst = 0;
+  if (summary.contains("signals"))
+    for (auto& [name, s] : summary["signals"].items()) {
+      if (!inproc.signals.contains(name) || !inproc.signals[name].contains("rms_abs_error")) continue;
+      const json& b = inproc.signals[name]["rms_abs_error"];
+      const double dds_rms = s.value("rms_abs_error", kNaN);
+      if (b.is_number()) {
+        const double d = std::abs(dds_rms - b.get<double>());
+        worst = std::max(worst, std::isfinite(d) ? d : std::numeric_limits<double>::infinity());
+      }
+      diff[name] = {{"dds_rms_abs_error", finite_or_null(dds_rms)}, {"inproc_rms_abs_error", b}};
+    }
+  out["signals"] = diff;
+  out["max_rms_abs_difference"] = finite_or_null(worst);
+  out["run_dir"] = run_dir;
+  return out;
+}
+
+json Bench::row_json(const RunSpec& r, const RunResult& res) const {
+  const auto& v = variants_[r.variant];
+  return {{"scheme", v.name},
+          {"family", v.family},
+          {"zero_order_hold_jacobi", v.zero_order_hold_jacobi},
+          {"step_s", r.h},
+          {"solver", r.solver},
+          {"rtol", r.rtol},
+          {"atol", r.rtol * 1e-3},
+          {"sweep", r.sweep},
+          {"transport", "inproc"},
+          {"status", res.status},
+          {"reason", res.reason},
+          {"wall_time_s", finite_or_null(res.wall_time_s)},
+          {"macro_steps", res.macro_steps},
+          {"solver_stats", res.solver},
+          {"error",
+           {{"signal", res.worst_signal},
+            {"rms_rel", finite_or_null(res.rms_rel)},
+            {"max_rel", finite_or_null(res.max_rel)},
+            {"rms_below_reference_accuracy", res.rms_below_reference},
+            {"max_below_reference_accuracy", res.max_below_reference},
+            {"rms_rel_bound", finite_or_null(res.rms_rel_bound)}}},
+          {"signals", res.signals},
+          {"report", res.report}};
+}
+
+void Bench::plots(const std::vector<RunSpec>& specs, const std::vector<RunResult>& results, const json& orders) {
+  if (opt_.plots_dir.empty()) return;
+  fs::create_directories(opt_.plots_dir);
+  // Curves: (scheme, solver[, rtol]) -> points sorted by H.
+  auto curves = [&](const std::string& sweep, bool by_h) {
+    std::map<std::string, std::vector<std::pair<double, double>>> c;
+    for (std::size_t i = 0; i < specs.size(); ++i) {
+      if (specs[i].sweep != sweep && !(sweep == "tolerance" && specs[i].solver == "cvode_bdf")) continue;
+      const auto& res = results[i];
+      if (res.status != "ok" || !std::isfinite(res.rms_rel)) continue;
+      std::string name = variants_[specs[i].variant].name + " " + specs[i].solver;
+      if (sweep == "tolerance") name = variants_[specs[i].variant].name + " rtol " + num(specs[i].rtol, "%.0e");
+      c[name].push_back({by_h ? specs[i].h : res.wall_time_s, res.rms_rel});
+    }
+    for (auto& [k, pts] : c) std::sort(pts.begin(), pts.end());
+    return c;
+  };
+  auto panel_of = [&](const std::map<std::string, std::vector<std::pair<double, double>>>& c, const std::string& title,
+                      const std::string& xlabel) {
+    plot::Panel p;
+    p.title = title;
+    p.xlabel = xlabel;
+    p.ylabel = "RMS error / reference range (worst compared signal)";
+    p.logx = p.logy = true;
+    for (const auto& [name, pts] : c) {
+      plot::Series s;
+      s.label = name;
+      s.style = "linespoints";
+      for (const auto& [x, y] : pts) {
+        s.x.push_back(x);
+        s.y.push_back(y);
+      }
+      p.series.push_back(s);
+    }
+    return p;
+  };
+  plot::Figure wp;
+  wp.title = scene_name_ + ": work-precision (in-process runs; points along a curve are macro steps H)";
+  wp.height_px_per_panel = 520;
+  wp.panels.push_back(panel_of(curves("solver", false), "node solver sweep (rtol " + num(opt_.rtol, "%.0e") + ")",
+                               "wall time [s]"));
+  auto tol = curves("tolerance", false);
+  if (!tol.empty()) wp.panels.push_back(panel_of(tol, "tolerance sweep (cvode_bdf)", "wall time [s]"));
+  std::string why;
+  const std::string wp_path = opt_.plots_dir + "/" + scene_name_ + "_work_precision.png";
+  if (!plot::write_png(wp, wp_path, &why)) std::fprintf(stderr, "mechsim bench: no plot %s: %s\n", wp_path.c_str(), why.c_str());
+
+  plot::Figure ord;
+  ord.title = scene_name_ + ": error against macro step (cvode_bdf)";
+  ord.height_px_per_panel = 520;
+  auto by_h = curves("solver", true);
+  std::map<std::string, std::vector<std::pair<double, double>>> bdf;
+  for (auto& [name, pts] : by_h)
+    if (name.size() > 10 && name.substr(name.size() - 10) == " cvode_bdf") {
+      std::string label = name.substr(0, name.size() - 10);
+      for (const auto& o : orders)
+        if (o["scheme"] == label && o["order"].is_number()) label += " (order " + num(o["order"].get<double>(), "%.2f") + ")";
+      bdf[label] = pts;
+    }
+  ord.panels.push_back(panel_of(bdf, "observed order: slope of log error against log H", "macro step H [s]"));
+  const std::string ord_path = opt_.plots_dir + "/" + scene_name_ + "_error_vs_step.png";
+  if (!plot::write_png(ord, ord_path, &why)) std::fprintf(stderr, "mechsim bench: no plot %s: %s\n", ord_path.c_str(), why.c_str());
+}
+
+int Bench::run() {
+  const auto t_start = Clock::now();
+  // The scene as given (with overrides) must be valid.
+  std::unique_ptr<config::Scene> base;
+  try {
+    base = std::make_unique<config::Scene>(config::load_scene(opt_.scene_path, opt_.overrides));
+    cosim::ScenePlan::build(*base);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s\n", e.what());
+    return 2;
+  }
+  if (base->compare.empty()) {
+    std::fprintf(stderr, "mechsim bench: %s: the scene has no 'compare:' outputs to measure the error on\n",
+                 opt_.scene_path.c_str());
+    return 2;
+  }
+  scene_name_ = base->name;
+  h0_ = base->time.step;
+  doc_ = YAML::Clone(base->root.yaml());
+  for (const auto& p : base->participants) {
+    participants_.push_back(p.name);
+    if (doc_["participants"][p.name]["params"] && doc_["participants"][p.name]["params"]["sample_time"])
+      sampled_.push_back(p.name);
+  }
+  if (opt_.work_dir.empty()) {
+    char tmpl[] = "/tmp/mechsim-bench-XXXXXX";
+    if (!mkdtemp(tmpl)) {
+      std::perror("mechsim bench: mkdtemp");
+      return 1;
+    }
+    opt_.work_dir = tmpl;
+  } else {
+    fs::create_directories(opt_.work_dir);
+  }
+
+  // Scheme variants valid for this scene (checked by the scene validator at the scene's H).
+  std::vector<std::string> refused_variants;
+  for (auto& v : scheme_variants(doc_)) {
+    if (!opt_.schemes.empty() && std::find(opt_.schemes.begin(), opt_.schemes.end(), v.name) == opt_.schemes.end())
+      continue;
+    if (opt_.schemes.empty() && opt_.quick && !(v.shipped || v.zero_order_hold_jacobi || v.name == "jacobi/linear" ||
+                                                v.name == "compliant/linear" || v.name == "interface_jacobian/10"))
+      continue;
+    const std::string file = opt_.work_dir + "/" + scene_name_ + "." + std::to_string(variants_.size()) + ".yaml";
+    {
+      YAML::Emitter em;
+      em << v.document;
+      std::ofstream(file) << "# mechsim bench: " << opt_.scene_path << " with scheme " << v.name << "\n" << em.c_str() << "\n";
+    }
+    try {
+      config::Scene s = config::load_scene(file, opt_.overrides);
+      cosim::ScenePlan::build(s);
+    } catch (const std::exception& e) {
+      refused_variants.push_back(v.name + ": " + e.what());
+      continue;
+    }
+    variants_.push_back(v);
+    variant_files_.push_back(file);
+  }
+  if (variants_.empty()) {
+    std::fprintf(stderr, "mechsim bench: no coupling scheme to sweep%s\n",
+                 opt_.schemes.empty() ? " (the scene has no connections)" : " (--schemes matches none valid here)");
+    for (const auto& r : refused_variants) std::fprintf(stderr, "  refused %s\n", r.c_str());
+    return 2;
+  }
+
+  // The grid.
+  std::vector<double> steps = opt_.steps;
+  if (steps.empty()) {
+    const std::vector<double> factors = opt_.quick ? std::vector<double>{1, 2, 4} : std::vector<double>{0.25, 0.5, 1, 2, 4, 10};
+    for (double f : factors) steps.push_back(h0_ * f);
+  }
+  // Only steps that divide the run into whole macro steps.
+  std::vector<double> grid;
+  for (double h : steps) {
+    const double n = (base->time.end - base->time.start) / h;
+    if (std::abs(n - std::round(n)) > 1e-6 * n || n < 4) {
+      std::fprintf(stderr, "mechsim bench: skipping H = %s: not a whole number of steps over the run\n", time_text(h).c_str());
+      continue;
+    }
+    grid.push_back(h);
+  }
+  if (grid.empty()) {
+    std::fprintf(stderr, "mechsim bench: no usable macro step\n");
+    return 2;
+  }
+  std::vector<std::string> solvers = opt_.solvers;
+  if (solvers.empty())
+    solvers = opt_.quick ? std::vector<std::string>{"cvode_bdf"}
+                         : std::vector<std::string>{"cvode_bdf", "cvode_adams", "arkode_erk", "arkode_dirk"};
+  std::vector<double> rtols = opt_.rtols;
+  if (rtols.empty()) rtols = opt_.quick ? std::vector<double>{1e-8} : std::vector<double>{1e-4, 1e-8};
+
+  std::vector<RunSpec> specs;
+  for (int v = 0; v < static_cast<int>(variants_.size()); ++v)
+    for (double h : grid) {
+      for (const auto& s : solvers) specs.push_back({v, h, s, opt_.rtol, "solver"});
+      for (double rt : rtols)
+        if (rt != opt_.rtol) specs.push_back({v, h, "cvode_bdf", rt, "tolerance"});
+    }
+
+  std::fprintf(stderr, "mechsim bench: %s: %zu schemes x %zu steps (%s .. %s) x %zu solvers + %zu tolerances = %zu runs in process\n",
+               scene_name_.c_str(), variants_.size(), grid.size(), time_text(grid.front()).c_str(),
+               time_text(grid.back()).c_str(), solvers.size(), rtols.size(), specs.size());
+  for (const auto& r : refused_variants) std::fprintf(stderr, "  scheme refused by the scene: %s\n", r.c_str());
+
+  // DDS spot checks: the shipped scheme at the scene's H, then the zero-order-hold baseline.
+  int n_dds = opt_.dds_checks >= 0 ? opt_.dds_checks : (opt_.quick ? 1 : 2);
+  std::vector<std::size_t> dds_specs;
+  for (int pass = 0; pass < 2 && static_cast<int>(dds_specs.size()) < n_dds; ++pass)
+    for (std::size_t i = 0; i < specs.size(); ++i) {
+      const auto& v = variants_[specs[i].variant];
+      if (specs[i].sweep == "solver" && specs[i].solver == solvers.front() &&
+          std::abs(specs[i].h - h0_) < 1e-12 * h0_ && (pass == 0 ? v.shipped : v.zero_order_hold_jacobi)) {
+        dds_specs.push_back(i);
+        break;
+      }
+    }
+  if (static_cast<int>(dds_specs.size()) > n_dds) dds_specs.resize(n_dds);
+
+  std::vector<RunResult> results(specs.size());
+  json dds = json::array();
+  // The nodes print their own lines ("done: ...") on stdout: keep them out of the table.
+  std::fflush(stdout);
+  const int saved_stdout = dup(1);
+  if (FILE* null = std::fopen("/dev/null", "w")) {
+    dup2(fileno(null), 1);
+    std::fclose(null);
+  }
+  for (std::size_t i = 0; i < specs.size(); ++i) {
+    const RunSpec& r = specs[i];
+    const std::string dir = opt_.work_dir + "/inproc-" + std::to_string(i);
+    const bool keep = std::find(dds_specs.begin(), dds_specs.end(), i) != dds_specs.end();
+    results[i] = run_inproc_point(r, dir);
+    const RunResult& res = results[i];
+    std::fprintf(stderr, "[%zu/%zu %5.0f s] %-22s H %-9s %-11s rtol %-6s %-8s rms %-10s wall %s s\n", i + 1, specs.size(),
+                 seconds_since(t_start), variants_[r.variant].name.c_str(), time_text(r.h).c_str(), r.solver.c_str(),
+                 num(r.rtol, "%.0e").c_str(), res.status.c_str(),
+                 res.rms_below_reference ? "<ref" : num(res.rms_rel).c_str(), num(res.wall_time_s).c_str());
+    if (keep) {
+      std::fprintf(stderr, "  DDS spot check: mechsim launch, %s at H %s ...\n", variants_[r.variant].name.c_str(),
+                   time_text(r.h).c_str());
+      json d = dds_check(r, res);
+      std::fprintf(stderr, "  DDS spot check: %s, outputs %s the in-process run's\n", d.value("status", "?").c_str(),
+                   d.value("outputs_identical", false) ? "bit-identical to" : "DIFFERENT from");
+      dds.push_back(d);
+    }
+    if (!opt_.keep_work_dir) {
+      std::error_code ec;
+      fs::remove_all(dir, ec);
+    }
+  }
+
+  // Observed order per scheme: cvode_bdf at the tightest tolerance swept, over the points
+  // that are neither saturated by the tolerance/reference floor nor outside the asymptotic
+  // range (docs/accuracy.md).
+  json orders = json::array();
+  double tight = opt_.rtol;
+  for (double rt : rtols) tight = std::min(tight, rt);
+  for (int v = 0; v < static_cast<int>(variants_.size()); ++v) {
+    std::vector<double> hs, es;
+    json used = json::array();
+    for (std::size_t i = 0; i < specs.size(); ++i) {
+      const auto& r = specs[i];
+      if (r.variant != v || r.solver != "cvode_bdf" || r.rtol != tight) continue;
+      const auto& res = results[i];
+      if (res.status != "ok" || !std::isfinite(res.rms_rel)) continue;
+      double floor_rel = 0;
+      const Reference& ref = reference(v, r.h);
+      for (auto& [name, e] : ref.accuracy_json["signals"].items())
+        floor_rel = std::max(floor_rel, e.value("rms_rel_difference", 0.0));
+      floor_rel = std::max(floor_rel, r.rtol);
+      if (res.rms_rel < 10 * floor_rel || res.rms_rel > 0.1) continue;
+      hs.push_back(r.h);
+      es.push_back(res.rms_rel);
+      used.push_back(r.h);
+    }
+    const double p = fit_order(hs, es);
+    orders.push_back({{"scheme", variants_[v].name},
+                      {"solver", "cvode_bdf"},
+                      {"rtol", tight},
+                      {"order", finite_or_null(p)},
+                      {"steps_used_s", used},
+                      {"note", std::isfinite(p) ? "" : "fewer than 3 non-saturated stable points"}});
+  }
+
+  // Best scheme against zero-order-hold Jacobi: the largest factor e_zoh / e over pairs of
+  // runs where the other run took no more wall time than the zero-order-hold one.
+  json ten_x = json::object();
+  {
+    std::vector<std::pair<double, double>> zoh;
+    for (std::size_t i = 0; i < specs.size(); ++i)
+      if (variants_[specs[i].variant].zero_order_hold_jacobi && results[i].status == "ok" && std::isfinite(results[i].rms_rel))
+        zoh.push_back({results[i].wall_time_s, results[i].rms_rel});
+    double best = 0;
+    json where;
+    bool any_other_ok = false;
+    for (std::size_t i = 0; i < specs.size(); ++i) {
+      if (variants_[specs[i].variant].zero_order_hold_jacobi || results[i].status != "ok") continue;
+      any_other_ok = true;
+      // A refused (below reference accuracy) error is bounded by the reference's error.
+      const double e = std::isfinite(results[i].rms_rel) ? results[i].rms_rel : results[i].rms_rel_bound;
+      if (!(e > 0)) continue;
+      for (const auto& [wz, ez] : zoh)
+        if (results[i].wall_time_s <= wz && ez / e > best) {
+          best = ez / e;
+          where = {{"scheme", variants_[specs[i].variant].name}, {"solver", specs[i].solver}, {"rtol", specs[i].rtol},
+                   {"step_s", specs[i].h}, {"wall_time_s", results[i].wall_time_s}, {"rms_rel", e},
+                   {"bounded_by_reference", !std::isfinite(results[i].rms_rel)}, {"zoh_wall_time_s", wz}, {"zoh_rms_rel", ez}};
+        }
+    }
+    ten_x["definition"] = "max over run pairs of rms_rel(zero-order-hold Jacobi) / rms_rel(other) where the other run's wall time <= the zero-order-hold run's";
+    ten_x["zoh_stable_points"] = zoh.size();
+    if (zoh.empty()) {
+      ten_x["factor"] = nullptr;
+      ten_x["met"] = any_other_ok;
+      ten_x["note"] = any_other_ok ? "zero-order-hold Jacobi is unstable at every swept H; other schemes are not"
+                                   : "no stable run";
+    } else {
+      ten_x["factor"] = best;
+      ten_x["met"] = best >= 10;
+      ten_x["at"] = where;
+    }
+  }
+
+  std::fflush(stdout);
+  if (saved_stdout >= 0) {
+    dup2(saved_stdout, 1);
+    close(saved_stdout);
+  }
+  const double duration = seconds_since(t_start);
+  // Table.
+  out_ << "mechsim bench " << scene_name_ << ": errors are the RMS (max) of the worst compared signal, relative to the reference range; '<ref' = below the reference's own error\n";
+  char line[512];
+  std::snprintf(line, sizeof line, "%-22s %-9s %-11s %-6s %-9s %-10s %-10s %-9s %-9s\n", "scheme", "H", "solver", "rtol", "status",
+                "rms_rel", "max_rel", "wall_s", "steps");
+  out_ << line;
+  for (std::size_t i = 0; i < specs.size(); ++i) {
+    const auto& r = specs[i];
+    const auto& res = results[i];
+    std::snprintf(line, sizeof line, "%-22s %-9s %-11s %-6s %-9s %-10s %-10s %-9s %-9s\n", variants_[r.variant].name.c_str(),
+                  time_text(r.h).c_str(), r.solver.c_str(), num(r.rtol, "%.0e").c_str(), res.status.c_str(),
+                  res.rms_below_reference ? "<ref" : num(res.rms_rel).c_str(),
+                  res.max_below_reference ? "<ref" : num(res.max_rel).c_str(), num(res.wall_time_s, "%.3f").c_str(),
+                  res.solver.is_object() ? std::to_string(res.solver.value("steps", 0L)).c_str() : "-");
+    out_ << line;
+  }
+  out_ << "observed order (cvode_bdf, rtol " << num(tight, "%.0e") << "):";
+  for (const auto& o : orders)
+    out_ << "  " << o["scheme"].get<std::string>() << " " << (o["order"].is_number() ? num(o["order"].get<double>(), "%.2f") : "-");
+  out_ << "\n";
+  for (const auto& d : dds)
+    out_ << "DDS spot check " << d["scheme"].get<std::string>() << " H " << time_text(d["step_s"].get<double>()) << ": "
+         << d.value("status", "?") << ", outputs " << (d.value("outputs_identical", false) ? "bit-identical to" : "DIFFERENT from")
+         << " the in-process run, wall " << num(d.value("wall_time_s", kNaN)) << " s (in process "
+         << (d["inproc_wall_time_s"].is_number() ? num(d["inproc_wall_time_s"].get<double>()) : "-") << " s)\n";
+  out_ << "best scheme vs zero-order-hold Jacobi: "
+       << (ten_x["factor"].is_number() ? num(ten_x["factor"].get<double>(), "%.3g") + "x" : ten_x.value("note", ""))
+       << (ten_x["at"].is_object() ? " (" + ten_x["at"]["scheme"].get<std::string>() + " " + ten_x["at"]["solver"].get<std::string>() + " H " +
+                                         time_text(ten_x["at"]["step_s"].get<double>()) + ")"
+                                   : "")
+       << "\n";
+  out_ << "bench duration " << num(duration, "%.1f") << " s\n";
+
+  plots(specs, results, orders);
+
+  if (!opt_.json_path.empty()) {
+    json refs = json::array();
+    for (const auto& [key, ref] : refs_)
+      refs.push_back({{"coupling_element", key.first}, {"step_s", key.second}, {"error", ref->error},
+                      {"rtol", ref->run.rtol}, {"wall_time_s", ref->run.wall_time_s}, {"accuracy", ref->accuracy_json}});
+    json rows = json::array();
+    for (std::size_t i = 0; i < specs.size(); ++i) rows.push_back(row_json(specs[i], results[i]));
+    json doc{{"schema_version", tools::schema_version},
+             {"provenance", tools::provenance(opt_.scene_path)},
+             {"kind", "bench"},
+             {"scene", scene_name_},
+             {"overrides", opt_.overrides},
+             {"options", {{"quick", opt_.quick}, {"steps_s", grid}, {"solvers", solvers}, {"rtol", opt_.rtol}, {"rtols", rtols},
+                          {"schemes", [&] { json a = json::array(); for (auto& v : variants_) a.push_back(v.name); return a; }()}}},
+             {"schemes_refused", refused_variants},
+             {"references", refs},
+             {"rows", rows},
+             {"orders", orders},
+             {"dds_checks", dds},
+             {"best_vs_zero_order_hold", ten_x},
+             {"duration_s", duration}};
+    if (!opt_.plots_dir.empty())
+      doc["files"] = {{"work_precision_png", opt_.plots_dir + "/" + scene_name_ + "_work_precision.png"},
+                      {"error_vs_step_png", opt_.plots_dir + "/" + scene_name_ + "_error_vs_step.png"}};
+    tools::write_json_file(opt_.json_path, doc);
+  }
+  if (!opt_.keep_work_dir) {
+    std::error_code ec;
+    fs::remove_all(opt_.work_dir, ec);
+  }
+  return 0;
+}
+
+}  // namespace
+
+int run_bench(const BenchOptions& options, std::ostream& out) {
+  Bench b(options, out);
+  return b.run();
+}
+
+}  // namespace mechsim::bench

@@ -1,0 +1,64 @@
+// `mechsim bench`: work-precision sweeps of one scene (docs/accuracy.md).
+//
+// Sweeps the macro step H, the coupling scheme of the scene's connections (the schemes the
+// scene grammar accepts and the scene's connections can take), the node solver and its
+// tolerance, runs each point over the in-process transport (cosim::run_inproc: the node
+// code as threads of this process) and a few spot checks over DDS (`mechsim launch`
+// processes), and measures each run against the monolithic reference at the same H
+// (launch::compare_signal on the scene's `compare:` outputs). An error that is not larger
+// than the reference's own error estimate (cosim::estimate_reference_error: a re-run at a
+// 100x tighter tolerance) is never reported as a number: it is marked "below reference
+// accuracy".
+#pragma once
+
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
+
+namespace mechsim::bench {
+
+struct BenchOptions {
+  std::string scene_path;
+  std::vector<std::string> overrides;   // "dotted.key=value", applied to every run
+  std::string json_path;                // "" = no JSON
+  std::string plots_dir;                // "" = no PNG
+  std::vector<double> steps;            // macro steps in s; empty = the scene's decade range
+  std::vector<std::string> schemes;     // scheme names to keep; empty = all valid for the scene
+  std::vector<std::string> solvers;     // empty = cvode_bdf cvode_adams arkode_erk arkode_dirk
+  std::vector<double> rtols;            // node tolerances swept with cvode_bdf; empty = default
+  double rtol = 1e-6;                   // node tolerance of the solver sweep (atol = rtol/1000)
+  bool quick = false;                   // small subset for CI
+  int dds_checks = -1;                  // DDS spot checks; -1 = default (2, quick 1)
+  std::string mechsim_exe;              // for the DDS spot checks; "" = /proc/self/exe
+  std::string work_dir;                 // scratch; "" = a fresh directory under /tmp
+  bool keep_work_dir = false;
+};
+
+// One coupling-scheme variant of a scene: a name ("jacobi/hold", "interface_jacobian/10")
+// and the scene document with its connections rewritten.
+struct SchemeVariant {
+  std::string name;
+  std::string family;     // the curve family: "jacobi", "gauss_seidel", "compliant", "interface_jacobian"
+  bool zero_order_hold_jacobi = false;  // the baseline of the 10x target
+  bool shipped = false;   // the connections as the scene ships them
+  YAML::Node document;
+};
+
+// The variants valid for the scene's connections (not yet checked by the scene validator).
+std::vector<SchemeVariant> scheme_variants(const YAML::Node& scene_document);
+
+// Slope of log(error) against log(H), least squares. Points with a non-positive or
+// non-finite error are skipped; NaN with fewer than 3 points.
+double fit_order(const std::vector<double>& h, const std::vector<double>& error);
+
+// Parses "25 us,50 us,1ms" (comma separated quantities of time) to seconds. Throws
+// std::invalid_argument with the offending entry.
+std::vector<double> parse_steps(const std::string& text);
+
+// Runs the bench; prints the table on `out`, progress on stderr. Returns the exit code:
+// 0 done, 1 a run could not be measured at all (the reference failed), 2 bad scene/options.
+int run_bench(const BenchOptions& options, std::ostream& out);
+
+}  // namespace mechsim::bench
