@@ -1,0 +1,85 @@
+// The pieces of `mechsim bench` that need no run: the order fit, the --steps grammar and
+// the coupling-scheme variants it derives from a scene's connections.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "bench.h"
+
+namespace mechsim::bench {
+namespace {
+
+TEST(BenchOrderFit, RecoversTheSlopeOfAPowerLaw) {
+  // e = 3 h^2 exactly: the least-squares slope of log e against log h is 2 up to rounding
+  // (1e-12 covers the log/exp round trip of doubles).
+  std::vector<double> h{1e-4, 2e-4, 4e-4, 1e-3}, e;
+  for (double x : h) e.push_back(3 * x * x);
+  EXPECT_NEAR(fit_order(h, e), 2.0, 1e-12);
+  // Non-finite or non-positive errors are skipped, not fitted.
+  h.push_back(2e-3);
+  e.push_back(NAN);
+  h.push_back(4e-3);
+  e.push_back(0.0);
+  EXPECT_NEAR(fit_order(h, e), 2.0, 1e-12);
+  // Fewer than three usable points: no order.
+  EXPECT_TRUE(std::isnan(fit_order({1e-3, 2e-3}, {1.0, 2.0})));
+}
+
+TEST(BenchSteps, ParsesQuantitiesAndRefusesBadEntries) {
+  const auto s = parse_steps("50 us, 25 us,1ms");
+  ASSERT_EQ(s.size(), 3u);
+  EXPECT_DOUBLE_EQ(s[0], 25e-6);  // sorted
+  EXPECT_DOUBLE_EQ(s[1], 50e-6);
+  EXPECT_DOUBLE_EQ(s[2], 1e-3);
+  EXPECT_THROW(parse_steps("25 kg"), std::invalid_argument);
+  EXPECT_THROW(parse_steps("fast"), std::invalid_argument);
+  EXPECT_THROW(parse_steps("-1 ms"), std::invalid_argument);
+  EXPECT_THROW(parse_steps(" , "), std::invalid_argument);
+}
+
+TEST(BenchSchemes, ExplicitConnectionsGetJacobiAndGaussSeidelVariants) {
+  const YAML::Node doc = YAML::Load(R"(
+connections:
+  - {from: cam, to: follower, order: gauss_seidel}
+  - {from: follower, to: cam, order: jacobi, reconstruction: hold}
+)");
+  const auto v = scheme_variants(doc);
+  std::vector<std::string> names;
+  for (const auto& x : v) names.push_back(x.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"shipped", "jacobi/hold", "jacobi/linear", "jacobi/quadratic",
+                                             "gauss_seidel/hold", "gauss_seidel/linear", "gauss_seidel/quadratic"}));
+  EXPECT_TRUE(v[1].zero_order_hold_jacobi);
+  EXPECT_EQ(v[1].document["connections"][0]["order"].as<std::string>(), "jacobi");
+  EXPECT_EQ(v[2].document["connections"][1]["reconstruction"].as<std::string>(), "linear");
+  EXPECT_EQ(v[5].document["connections"][0]["order"].as<std::string>(), "gauss_seidel");
+  EXPECT_EQ(v[5].document["connections"][1]["reconstruction"].as<std::string>(), "linear");
+  // The input document is not changed.
+  EXPECT_FALSE(doc["connections"][0]["reconstruction"]);
+}
+
+TEST(BenchSchemes, ACutGetsCompliantAndInterfaceJacobianVariants) {
+  const YAML::Node doc = YAML::Load(R"(
+connections:
+  - {from: servo, to: tacho, order: jacobi, reconstruction: hold}
+  - {from: tacho, to: slide, coupling: {scheme: interface_jacobian, levels: 10, stiffness: 23e3 N m/rad, damping: 0.15 N m s/rad}}
+)");
+  const auto v = scheme_variants(doc);
+  ASSERT_EQ(v.size(), 7u);
+  EXPECT_EQ(v[1].name, "compliant/hold");
+  EXPECT_TRUE(v[1].zero_order_hold_jacobi);
+  // Compliant: both directions of the cut, the element on one, no `levels`.
+  const YAML::Node c = v[1].document["connections"];
+  ASSERT_EQ(c.size(), 3u);
+  EXPECT_EQ(c[1]["coupling"]["scheme"].as<std::string>(), "compliant");
+  EXPECT_FALSE(c[1]["coupling"]["levels"]);
+  EXPECT_EQ(c[1]["coupling"]["stiffness"].as<std::string>(), "23e3 N m/rad");
+  EXPECT_EQ(c[2]["from"].as<std::string>(), "slide");
+  EXPECT_EQ(c[2]["reconstruction"].as<std::string>(), "hold");
+  // Interface Jacobian: one entry for the cut, the reverse dropped.
+  EXPECT_EQ(v[4].name, "interface_jacobian/1");
+  EXPECT_EQ(v[4].document["connections"].size(), 2u);
+  EXPECT_EQ(v[4].document["connections"][1]["coupling"]["levels"].as<int>(), 1);
+}
+
+}  // namespace
+}  // namespace mechsim::bench
