@@ -30,6 +30,7 @@
 #include "paths.h"
 #include "run_report.h"
 #include "signal_compare.h"
+#include "solver_health.h"
 #include "csv.h"
 #include "json_io.h"
 #include "plot.h"
@@ -269,6 +270,16 @@ RunOutcome Run::run_nodes() {
     if (!out.reason.empty()) break;
     if (processes_.all_exited()) {
       out.ok = true;
+      // The final statuses (done, with the solver statistics) may still be in flight.
+      for (int i = 0; i < 20; ++i) {
+        take_status();
+        bool all = true;
+        for (const auto& [name, w] : watch_) all = all && w.last.state == transport::NodeState::done;
+        if (all) break;
+        participant_->wait(std::chrono::milliseconds(5));
+      }
+      for (auto& [name, w] : watch_)
+        if (w.last.state == transport::NodeState::done && w.done_at_s < 0) w.done_at_s = seconds_since(started);
       break;
     }
     if (g_interrupt) {
@@ -313,6 +324,38 @@ RunOutcome Run::run_nodes() {
   return out;
 }
 
+// The solver figures of one node from its last status.
+NodeSolverFigures solver_figures(const config::ParticipantSpec& spec, const transport::StatusMessage& last, long macro_steps,
+                                 double macro_step) {
+  NodeSolverFigures f;
+  f.method = spec.solver.method;
+  f.steps = last.solver_steps;
+  f.rhs_evals = last.rhs_evals;
+  f.error_test_failures = last.error_test_failures;
+  f.nonlinear_failures = last.nonlinear_failures;
+  f.roots_found = last.roots_found;
+  f.last_step = last.last_step_size;
+  f.last_order = last.last_order;
+  f.macro_steps = macro_steps;
+  f.macro_step = macro_step;
+  return f;
+}
+
+// One line per node with its integrator statistics, and the stiffness hints.
+void print_solver_health(const json& nodes) {
+  for (const auto& [name, n] : nodes.items()) {
+    const json& s = n["solver"];
+    if (s.value("steps", 0LL) == 0) continue;  // a node without states (or no status seen)
+    std::printf("  solver %-10s %s: %lld steps (%.1f per macro step), %lld error-test / %lld convergence failures, %lld roots, last step %.3g s, order %lld\n",
+                name.c_str(), s.value("method", std::string("?")).c_str(), s.value("steps", 0LL),
+                s.value("steps_per_macro_step", 0.0), s.value("error_test_failures", 0LL), s.value("nonlinear_failures", 0LL),
+                s.value("roots_found", 0LL), s.value("last_step_s", 0.0), s.value("last_order", 0LL));
+  }
+  for (const auto& [name, n] : nodes.items())
+    if (n["solver"].contains("stiffness_hint"))
+      std::printf("  hint: node '%s': %s\n", name.c_str(), n["solver"]["stiffness_hint"].get<std::string>().c_str());
+}
+
 json Run::summarise(const RunOutcome& out) {
   json s;
   s["schema_version"] = tools::schema_version;
@@ -350,6 +393,11 @@ json Run::summarise(const RunOutcome& out) {
                        {"last_step_s", w.last.last_step_size},
                        {"last_order", w.last.last_order}}},
                      {"log", run_dir_ + "/" + p.name + ".log"}};
+    // Integrator health (solver_health.h): steps per macro step and the stiffness hint.
+    const NodeSolverFigures health = solver_figures(*spec, w.last, w.seen ? static_cast<long>(w.last.header.step) : 0, scene_.time.step);
+    nodes[p.name]["solver"]["method"] = health.method;
+    nodes[p.name]["solver"]["steps_per_macro_step"] = steps_per_macro_step(health);
+    if (auto hint = stiffness_hint(health)) nodes[p.name]["solver"]["stiffness_hint"] = *hint;
   }
   s["nodes"] = nodes;
   // Events the nodes reported (lift-off, landing, ...), from <node>.events.jsonl.
@@ -556,6 +604,7 @@ int Run::execute() {
         std::printf("  events: %d x %s (reference: %d; details in the summary JSON)\n", n, kind.c_str(),
                     summary["reference"]["event_counts"].value(kind, 0));
     }
+    print_solver_health(summary["nodes"]);
     std::printf("  run folder: %s\n", run_dir_.c_str());
     return 0;
   }
@@ -563,6 +612,7 @@ int Run::execute() {
                out.failed_node.empty() || out.failed_node.find(',') != std::string::npos
                    ? ""
                    : (" (last step " + std::to_string(out.failed_step) + ")").c_str());
+  print_solver_health(summary["nodes"]);
   std::fprintf(stderr, "mechsim: all node processes stopped; logs in %s\n", run_dir_.c_str());
   return out.exit_code;
 }

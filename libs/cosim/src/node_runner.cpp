@@ -256,6 +256,7 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
         if (stepper.finished()) break;
         drain();
         predict_if_due();
+        copy_stats(stepper.solver_stats(), beat.status());  // statistics on every heartbeat
         beat.tick();
       }
       if (stepper.finished()) break;

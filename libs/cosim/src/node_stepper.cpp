@@ -149,4 +149,29 @@ std::vector<solve::EventRecord> NodeStepper::take_events() {
   return integrator_ ? integrator_->take_events() : std::vector<solve::EventRecord>{};
 }
 
+std::vector<double> NodeStepper::coupled_state() const {
+  if (!integrator_) throw std::logic_error("coupled_state before initialise");
+  const auto x = integrator_->state();
+  std::vector<double> z(x.begin(), x.end());
+  const std::vector<double> held = node_.block->save_discrete_state();
+  z.insert(z.end(), held.begin(), held.end());
+  for (const auto& c : channels_)
+    for (const auto& [step, values] : c.held_samples()) z.insert(z.end(), values.begin(), values.end());
+  if (cut_side_) z.push_back(assumed_torque_);
+  return z;
+}
+
+void NodeStepper::set_coupled_state(std::span<const double> z) {
+  if (z.size() != coupled_state().size()) throw std::invalid_argument("set_coupled_state: size mismatch");
+  const std::size_t nx = integrator_->state().size();
+  const std::size_t nd = node_.block->save_discrete_state().size();
+  std::size_t i = nx + nd;
+  integrator_->reset_state(integrator_->time(), z.first(nx));
+  if (nd > 0) node_.block->restore_discrete_state(z.subspan(nx, nd));
+  for (auto& c : channels_)
+    for (auto& [step, values] : c.held_samples())
+      for (double& v : values) v = z[i++];
+  if (cut_side_) assumed_torque_ = z[i++];
+}
+
 }  // namespace mechsim::cosim

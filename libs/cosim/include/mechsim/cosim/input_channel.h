@@ -45,6 +45,10 @@ class InputChannel {
   std::uint64_t newest_step() const { return samples_.empty() ? 0 : samples_.rbegin()->first; }
   bool empty() const { return samples_.empty(); }
   config::EdgeOrder order() const { return order_; }
+  // The samples held, by step (the linear analysis of the macro-step map reads and
+  // perturbs them: tools/bench/stability.cpp).
+  std::map<std::uint64_t, std::vector<double>>& held_samples() { return samples_; }
+  const std::map<std::uint64_t, std::vector<double>>& held_samples() const { return samples_; }
 
  private:
   const std::vector<double>* find(std::uint64_t step) const;

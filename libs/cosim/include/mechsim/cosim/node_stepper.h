@@ -52,6 +52,15 @@ class NodeStepper {
   const solve::SolverStats* solver_stats() const { return integrator_ ? &integrator_->stats() : nullptr; }
   std::vector<solve::EventRecord> take_events();
 
+  // The node's part of the coupled state at a step boundary (after step(), before the next
+  // prediction), for the linear analysis of the macro-step map (tools/bench/stability.cpp):
+  // its integrator state, its block's discrete (sampled, held) state, then every sample its channels hold (channel by channel, oldest
+  // step first), then the torque an interface-Jacobian cut assumes next. set_coupled_state
+  // writes the same layout back (the integrator restarts from the new state); throws
+  // std::invalid_argument on a size mismatch.
+  std::vector<double> coupled_state() const;
+  void set_coupled_state(std::span<const double> z);
+
  private:
   void inputs_at(double t, std::uint64_t k, std::span<double> u);
   void initial_inputs(std::span<double> u);

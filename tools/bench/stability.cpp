@@ -1,0 +1,543 @@
+// `mechsim bench SCENE --stability` (issue 6 item 4; docs/accuracy.md, "Stability and
+// extreme cases").
+//
+// Per cut (the connections between one pair of participants) and per scheme on it, the
+// largest macro step H at which the coupled run stays stable, by bisection over in-process
+// runs driven here with the product's NodeSteppers (the code every node process runs; no
+// transport, so a run takes milliseconds to seconds and gives the numbers a DDS run gives).
+// A run is unstable when
+//  - the divergence guard of any node fires (a non-finite output, or an oscillation whose
+//    swing grows window after window: libs/cosim/src/divergence_guard.cpp), or
+//  - the coupled subsystem's energy grows: the spring energy T^2 / (2 C) of the coupling
+//    element (from the nodes' coupling_torque outputs) over the last tenth of the run
+//    exceeds 4x its maximum over the rest, and 1e-6 of its peak (a settled, stable loop's
+//    spring energy decays after the transient; an unstable mode's grows geometrically and
+//    peaks at the end).
+//
+// Where the blocks are linear, the linear analysis of the macro-step map: the coupled state
+// z_k (every node's integrator state, every sample its channels hold, the interface-Jacobian
+// cut's assumed torque) is perturbed by each unit vector times delta at a step boundary,
+// one macro step run, and the columns (z_k+1(pert) - z_k+1(base)) / delta give the matrix
+// M(H); rho(H) = max |eig M| (Eigen). Linearity is checked, not assumed: the map is built
+// with delta and 10 delta and the scene counts as linear only if the two agree to 1e-5 of
+// the matrix's largest entry (saturation, Coulomb friction or a unilateral contact make them
+// differ). The H where rho crosses 1 is found by a scan and bisection on rho(H) - 1.
+#include "stability.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include "json_io.h"
+#include "mechsim/config/scene.h"
+#include "mechsim/cosim/divergence_guard.h"
+#include "mechsim/cosim/nc_params.h"
+#include "mechsim/cosim/node_stepper.h"
+#include "mechsim/cosim/scene_plan.h"
+
+namespace mechsim::bench {
+
+namespace {
+
+using json = nlohmann::json;
+
+std::string format_us(double h) {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%.4gus", h * 1e6);
+  return buf;
+}
+
+// A cut: the connections between one pair of participants, and what can be varied on it.
+struct Cut {
+  std::string a, b;                 // participants
+  std::vector<std::size_t> connections;  // indices into scene.connections
+  bool interface_jacobian = false;
+  bool has_jacobi = false;
+  double stiffness = 0.0;           // of the coupling element, if any (N m/rad or N/m)
+  std::string label() const {
+    std::string s = a + " <-> " + b + " (connections";
+    for (std::size_t i = 0; i < connections.size(); ++i) s += (i ? ", [" : "[") + std::to_string(connections[i]) + "]";
+    return s + ")";
+  }
+};
+
+struct Variant {
+  std::string scheme;                   // "linear", "interface_jacobian levels 10", ...
+  std::vector<std::string> overrides;   // applied to the scene
+};
+
+std::vector<Cut> find_cuts(const config::Scene& scene) {
+  std::vector<Cut> cuts;
+  for (std::size_t i = 0; i < scene.connections.size(); ++i) {
+    const auto& c = scene.connections[i];
+    const std::string a = std::min(c.from, c.to), b = std::max(c.from, c.to);
+    auto it = std::find_if(cuts.begin(), cuts.end(), [&](const Cut& k) { return k.a == a && k.b == b; });
+    if (it == cuts.end()) {
+      cuts.push_back({a, b, {}, false, false, 0.0});
+      it = cuts.end() - 1;
+    }
+    it->connections.push_back(i);
+    if (c.coupling) {
+      const cosim::CouplingSpec spec = cosim::parse_coupling(*c.coupling);
+      it->interface_jacobian = it->interface_jacobian || spec.scheme == "interface_jacobian";
+      it->stiffness = spec.params.stiffness;
+    }
+    if (c.order == config::EdgeOrder::jacobi && !(c.coupling && it->interface_jacobian)) it->has_jacobi = true;
+  }
+  return cuts;
+}
+
+std::vector<Variant> variants_of(const config::Scene& scene, const Cut& cut, bool quick) {
+  std::vector<Variant> out;
+  if (cut.interface_jacobian) {
+    std::size_t ij = cut.connections.front();
+    for (std::size_t i : cut.connections)
+      if (scene.connections[i].coupling) ij = i;
+    for (int levels : quick ? std::vector<int>{10} : std::vector<int>{1, 2, 10})
+      out.push_back({"interface_jacobian, " + std::to_string(levels) + " level" + (levels > 1 ? "s" : ""),
+                     {"connections[" + std::to_string(ij) + "].coupling.levels=" + std::to_string(levels)}});
+    return out;
+  }
+  if (!cut.has_jacobi) return out;  // Gauss-Seidel only: nothing extrapolated, nothing to vary
+  const std::string kind = [&] {
+    for (std::size_t i : cut.connections)
+      if (scene.connections[i].coupling) return cosim::parse_coupling(*scene.connections[i].coupling).scheme + ", ";
+    return std::string("jacobi, ");
+  }();
+  for (const char* r : quick ? std::vector<const char*>{"hold", "linear"} : std::vector<const char*>{"hold", "linear", "quadratic"}) {
+    Variant v{kind + r, {}};
+    for (std::size_t i : cut.connections)
+      if (scene.connections[i].order == config::EdgeOrder::jacobi)
+        v.overrides.push_back("connections[" + std::to_string(i) + "].reconstruction=" + r);
+    out.push_back(v);
+  }
+  return out;
+}
+
+// One in-process run of a scene, stepped by hand: the NodeSteppers of every node, samples
+// and predictions handed over in memory, a step barrier for the linear analysis.
+class SteppedRun {
+ public:
+  SteppedRun(const std::string& path, const std::vector<std::string>& overrides)
+      : scene_(std::make_unique<config::Scene>(config::load_scene(path, overrides))),
+        plan_(std::make_unique<cosim::ScenePlan>(cosim::ScenePlan::build(*scene_))) {
+    for (auto& node : plan_->nodes()) {
+      steppers_.push_back(std::make_unique<cosim::NodeStepper>(node, scene_->time));
+      std::vector<std::string> names;
+      for (const auto& o : node.block->outputs()) names.push_back(o.name);
+      guards_.push_back(std::make_unique<cosim::DivergenceGuard>(names));
+      torque_output_.push_back(node.block->output_index("coupling_torque"));
+    }
+    initialised_.assign(steppers_.size(), false);
+  }
+
+  const config::Scene& scene() const { return *scene_; }
+  std::uint64_t steps() const { return static_cast<std::uint64_t>(scene_->time.steps()); }
+  const std::optional<std::string>& diverged() const { return diverged_; }
+  // Spring energy T^2/(2C) per step (max over the nodes that publish coupling_torque).
+  const std::vector<double>& energy() const { return energy_; }
+  void watch_energy(const Cut& cut) {
+    if (cut.stiffness <= 0) return;
+    stiffness_ = cut.stiffness;
+    for (std::size_t i = 0; i < steppers_.size(); ++i) {
+      const std::string& n = plan_->nodes()[i].name();
+      energy_nodes_.push_back(i < torque_output_.size() && (n == cut.a || n == cut.b) && torque_output_[i] >= 0);
+    }
+  }
+
+  // Steps every node up to step `target` (each stops there), or until a guard fires.
+  void advance(std::uint64_t target) {
+    auto& nodes = plan_->nodes();
+    const std::size_t n = nodes.size();
+    for (;;) {
+      bool progressed = false, all_there = true;
+      for (std::size_t i = 0; i < n && !diverged_; ++i) {
+        cosim::NodeStepper& s = *steppers_[i];
+        if (!initialised_[i] && s.can_initialise()) {
+          s.initialise(values_);
+          initialised_[i] = true;
+          publish(i);
+          progressed = true;
+        }
+        if (initialised_[i] && s.step() < target && s.prediction_due()) {
+          s.predict(prediction_);
+          steppers_[index_of(nodes[i].cut->partner)]->add_partner_prediction(s.step(), prediction_);
+          progressed = true;
+        }
+        if (initialised_[i] && s.step() < target && s.can_step()) {
+          s.step(values_);
+          publish(i);
+          progressed = true;
+        }
+        all_there = all_there && initialised_[i] && (s.step() >= target || s.finished());
+      }
+      if (diverged_ || all_there) return;
+      if (!progressed) throw std::logic_error("in-process run: deadlock");
+    }
+  }
+
+  // The coupled state of all nodes (NodeStepper::coupled_state, node by node).
+  std::vector<double> coupled_state() const {
+    std::vector<double> z;
+    for (const auto& s : steppers_) {
+      const auto zi = s->coupled_state();
+      z.insert(z.end(), zi.begin(), zi.end());
+    }
+    return z;
+  }
+  void set_coupled_state(std::vector<double> z) {
+    // The two sides of an interface-Jacobian cut hold the same assumed torque (bit for bit,
+    // checked by the solve): one coordinate, the "+" side's; the other side's copy follows it.
+    for (std::size_t i = 0; i < steppers_.size(); ++i)
+      if (const auto& cut = plan_->nodes()[i].cut; cut && cut->twist_sign < 0)
+        z[torque_coordinate(i)] = z[torque_coordinate(index_of(cut->partner))];
+    std::size_t at = 0;
+    for (auto& s : steppers_) {
+      const std::size_t m = s->coupled_state().size();
+      s->set_coupled_state(std::span<const double>(z).subspan(at, m));
+      at += m;
+    }
+  }
+  // Coordinates that copy another (an interface-Jacobian cut's "-" side torque).
+  std::vector<std::size_t> copied_coordinates() const {
+    std::vector<std::size_t> out;
+    for (std::size_t i = 0; i < steppers_.size(); ++i)
+      if (const auto& cut = plan_->nodes()[i].cut; cut && cut->twist_sign < 0) out.push_back(torque_coordinate(i));
+    return out;
+  }
+
+ private:
+  // The assumed torque is the last coordinate of a cut node's part.
+  std::size_t torque_coordinate(std::size_t node) const {
+    std::size_t at = 0;
+    for (std::size_t i = 0; i <= node; ++i) at += steppers_[i]->coupled_state().size();
+    return at - 1;
+  }
+  std::size_t index_of(const std::string& name) const {
+    for (std::size_t i = 0; i < plan_->nodes().size(); ++i)
+      if (plan_->nodes()[i].name() == name) return i;
+    throw std::logic_error("no participant " + name);
+  }
+  void publish(std::size_t i) {
+    auto& nodes = plan_->nodes();
+    cosim::NodeStepper& s = *steppers_[i];
+    const std::uint64_t k = s.step();
+    if (auto why = guards_[i]->check(s.outputs())) diverged_ = "node '" + nodes[i].name() + "': " + *why;
+    if (stiffness_ > 0 && energy_nodes_[i]) {
+      const double t = s.outputs()[torque_output_[i]];
+      if (energy_.size() <= k) energy_.resize(k + 1, 0.0);
+      energy_[k] = std::max(energy_[k], std::isfinite(t) ? t * t / (2 * stiffness_) : 0.0);
+    }
+    for (std::size_t j = 0; j < nodes.size(); ++j)
+      for (std::size_t e = 0; e < nodes[j].inputs.size(); ++e)
+        if (nodes[j].inputs[e].from == nodes[i].name()) steppers_[j]->channel(e).add(k, values_);
+  }
+
+  std::unique_ptr<config::Scene> scene_;
+  std::unique_ptr<cosim::ScenePlan> plan_;
+  std::vector<std::unique_ptr<cosim::NodeStepper>> steppers_;
+  std::vector<std::unique_ptr<cosim::DivergenceGuard>> guards_;
+  std::vector<int> torque_output_;
+  std::vector<bool> initialised_, energy_nodes_;
+  std::vector<double> values_, prediction_, energy_;
+  double stiffness_ = 0.0;
+  std::optional<std::string> diverged_;
+};
+
+struct Trial {
+  bool stable = true;
+  std::string why;  // the guard's reason or the energy growth
+};
+
+constexpr long kMinSteps = 2000;
+
+// The overrides that put the scene at macro step h: the step, and every participant
+// sampled at the scene's own macro step sampled at h too (a sampled amplifier, identical
+// in the reference: coupling-facts.md).
+std::vector<std::string> at_step(const config::Scene& base, double h, std::vector<std::string> overrides) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.17g s", h);
+  overrides.push_back(std::string("time.step=") + buf);
+  // A whole number of steps: the run ends at the first step boundary at or after the
+  // scene's end, and lasts at least kMinSteps steps (the divergence guard's slow criterion
+  // needs 1500 steps to see a mode that grows by a few per mille per step).
+  const double n = std::max(std::ceil((base.time.end - base.time.start) / h - 1e-9), static_cast<double>(kMinSteps));
+  char end[64];
+  std::snprintf(end, sizeof end, "%.17g s", base.time.start + n * h);
+  overrides.push_back(std::string("time.end=") + end);
+  for (const auto& p : base.participants)
+    if (p.params.has("sample_time")) {
+      const double ts = p.params.child("sample_time").as_quantity(config::dim::time);
+      if (std::abs(ts - base.time.step) < 1e-12 * base.time.step)
+        overrides.push_back("participants." + p.name + ".params.sample_time=" + buf);
+    }
+  return overrides;
+}
+
+Trial try_step(const std::string& path, const config::Scene& base, const Cut& cut, const std::vector<std::string>& overrides,
+               double h) {
+  SteppedRun run(path, at_step(base, h, overrides));
+  run.watch_energy(cut);
+  Trial t;
+  try {
+    run.advance(run.steps());
+  } catch (const std::exception& e) {
+    // A solver that fails (step size underflow on an exploding state) is unstable too.
+    return {false, std::string("solver failed: ") + e.what()};
+  }
+  if (run.diverged()) return {false, *run.diverged()};
+  const auto& e = run.energy();
+  if (e.size() >= 20) {
+    const std::size_t tail = e.size() - e.size() / 10;
+    const double before = *std::max_element(e.begin(), e.begin() + static_cast<long>(tail));
+    const double after = *std::max_element(e.begin() + static_cast<long>(tail), e.end());
+    const double peak = std::max(before, after);
+    if (after > 4 * before && after > 1e-6 * peak) {
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "coupling spring energy grows: %.3g J in the last tenth of the run, %.3g J before", after, before);
+      return {false, buf};
+    }
+  }
+  return t;
+}
+
+// --- linear analysis -------------------------------------------------------------------
+
+constexpr std::uint64_t kLinearStep = 4;  // boundary where the map is taken (channel history full)
+
+// The one-step map M (z_k+1 = M z_k + c) at step boundary kLinearStep, by finite
+// differences with perturbation delta, on a scene with tight node tolerances.
+std::optional<Eigen::MatrixXd> step_map(const std::string& path, const std::vector<std::string>& overrides, double delta) {
+  auto boundary = [&](SteppedRun& run) {
+    run.advance(kLinearStep);
+    if (run.diverged()) throw std::runtime_error(*run.diverged());
+  };
+  SteppedRun base(path, overrides);
+  if (base.steps() < kLinearStep + 1) return std::nullopt;
+  boundary(base);
+  const std::vector<double> z0 = base.coupled_state();
+  base.advance(kLinearStep + 1);
+  const std::vector<double> z1 = base.coupled_state();
+  if (z1.size() != z0.size()) return std::nullopt;  // the state layout changes from step to step
+  const auto n = static_cast<Eigen::Index>(z0.size());
+  Eigen::MatrixXd m = Eigen::MatrixXd::Zero(n, n);
+  const std::vector<std::size_t> copies = base.copied_coordinates();
+  for (Eigen::Index i = 0; i < n; ++i) {
+    // A copied coordinate is no state of its own: its column stays zero (its row repeats
+    // the original's), which adds an eigenvalue 0 and leaves the others.
+    if (std::find(copies.begin(), copies.end(), static_cast<std::size_t>(i)) != copies.end()) continue;
+    SteppedRun run(path, overrides);
+    boundary(run);
+    std::vector<double> z = run.coupled_state();
+    z[i] += delta;
+    run.set_coupled_state(z);
+    run.advance(kLinearStep + 1);
+    const std::vector<double> zp = run.coupled_state();
+    for (Eigen::Index r = 0; r < n; ++r) m(r, i) = (zp[r] - z1[r]) / delta;
+  }
+  return m;
+}
+
+// Node tolerances tight enough that the finite differences see the map, not the error
+// control (the integration error of the perturbed run scales with the perturbation).
+std::vector<std::string> tight(const config::Scene& base, std::vector<std::string> overrides) {
+  for (const auto& p : base.participants) {
+    overrides.push_back("participants." + p.name + ".solver.rtol=1e-11");
+    overrides.push_back("participants." + p.name + ".solver.atol=1e-16");
+  }
+  return overrides;
+}
+
+struct Spectral {
+  bool linear = false;
+  std::string note;
+  std::vector<std::pair<double, double>> rho;  // (H, rho)
+  std::optional<double> crossing;              // H where rho first exceeds 1
+};
+
+double spectral_radius(const Eigen::MatrixXd& m) { return m.eigenvalues().cwiseAbs().maxCoeff(); }
+
+Spectral spectral(const std::string& path, const config::Scene& base, const std::vector<std::string>& overrides, double h_lo,
+                  double h_hi) {
+  Spectral s;
+  constexpr double kDelta = 1e-7;  // small against every limit (50 V, 30 A, 0.1 mm) in SI
+  auto map_at = [&](double h) { return step_map(path, tight(base, at_step(base, h, overrides)), kDelta); };
+  try {
+    auto m1 = map_at(h_lo);
+    if (!m1) {
+      s.note = "the coupled state's layout is not steady (too few steps?)";
+      return s;
+    }
+    auto m2 = step_map(path, tight(base, at_step(base, h_lo, overrides)), 10 * kDelta);
+    const double scale = std::max(m1->cwiseAbs().maxCoeff(), 1e-300);
+    const double diff = (*m1 - *m2).cwiseAbs().maxCoeff() / scale;
+    if (!(diff < 1e-5)) {
+      char buf[128];
+      std::snprintf(buf, sizeof buf, "not linear (the map changes by %.2g of its largest entry with a 10x perturbation)", diff);
+      s.note = buf;
+      return s;
+    }
+    s.linear = true;
+    // Scan a geometric grid, then bisect the first crossing of rho = 1.
+    const int points = 16;
+    double prev_h = 0, prev_rho = 0;
+    for (int i = 0; i <= points; ++i) {
+      const double h = h_lo * std::pow(h_hi / h_lo, static_cast<double>(i) / points);
+      const double rho = spectral_radius(*map_at(h));
+      s.rho.emplace_back(h, rho);
+      if (rho > 1 && !s.crossing) {
+        if (i == 0) {
+          s.crossing = h;
+          s.note = "rho > 1 already at the smallest H scanned";
+          break;
+        }
+        double lo = prev_h, hi = h;
+        while (hi / lo > 1.002) {
+          const double mid = std::sqrt(lo * hi);
+          (spectral_radius(*map_at(mid)) > 1 ? hi : lo) = mid;
+        }
+        s.crossing = std::sqrt(lo * hi);
+      }
+      prev_h = h;
+      prev_rho = rho;
+    }
+    (void)prev_rho;
+  } catch (const std::exception& e) {
+    s.linear = false;
+    s.note = std::string("no linear analysis: ") + e.what();
+  }
+  return s;
+}
+
+struct Row {
+  std::string cut, scheme;
+  std::optional<double> stable_h, unstable_h;  // bracket of the limit
+  std::string why;                             // why the smallest unstable H diverged
+  Spectral spectral;
+  int runs = 0;
+};
+
+}  // namespace
+
+int run_stability_bench(const std::string& scene_path, const StabilityOptions& options, std::ostream& out) {
+  std::unique_ptr<config::Scene> base;
+  try {
+    base = std::make_unique<config::Scene>(config::load_scene(scene_path, options.set_overrides));
+    cosim::ScenePlan::build(*base);  // validation, as a launch does
+  } catch (const config::ConfigError& e) {
+    out << "mechsim bench --stability: " << e.what() << "\n";
+    return 2;
+  }
+  const std::vector<Cut> cuts = find_cuts(*base);
+  const double h0 = base->time.step;
+  // Bracket: up to 64x (quick: 16x) the scene's step each way; bisection to 5 % (quick 15 %).
+  const double span = options.quick ? 16.0 : 64.0, resolution = options.quick ? 1.15 : 1.05;
+  std::vector<Row> rows;
+  out << "Stability of scene '" << base->name << "' (runs of " << base->time.end - base->time.start << " s or "
+      << kMinSteps << " steps, whichever is longer; scene step " << format_us(h0) << "): bisection on H over in-process runs\n";
+  for (const Cut& cut : cuts) {
+    // In quick mode only cuts across a coupling element.
+    if (options.quick && cut.stiffness <= 0 && !cut.interface_jacobian) continue;
+    for (const Variant& v : variants_of(*base, cut, options.quick)) {
+      std::vector<std::string> overrides = options.set_overrides;
+      overrides.insert(overrides.end(), v.overrides.begin(), v.overrides.end());
+      Row row{cut.label(), v.scheme, {}, {}, "", {}, 0};
+      out << "  " << row.cut << ", " << row.scheme << ": " << std::flush;
+      auto trial = [&](double h) {
+        ++row.runs;
+        Trial t = try_step(scene_path, *base, cut, overrides, h);
+        out << format_us(h) << (t.stable ? " ok  " : " x  ") << std::flush;
+        if (!t.stable && (!row.unstable_h || h < *row.unstable_h)) row.why = t.why;
+        return t.stable;
+      };
+      try {
+        double h = h0;
+        if (trial(h)) {
+          row.stable_h = h;
+          while (!row.unstable_h && h < h0 * span) {
+            h *= 2;
+            if (trial(h)) row.stable_h = h;
+            else row.unstable_h = h;
+          }
+        } else {
+          row.unstable_h = h;
+          while (!row.stable_h && h > h0 / span) {
+            h /= 2;
+            if (trial(h)) row.stable_h = h;
+            else row.unstable_h = h;
+          }
+        }
+        while (row.stable_h && row.unstable_h && *row.unstable_h / *row.stable_h > resolution) {
+          const double mid = std::sqrt(*row.stable_h * *row.unstable_h);
+          if (trial(mid)) row.stable_h = mid;
+          else row.unstable_h = mid;
+        }
+      } catch (const config::ConfigError& e) {
+        out << "\nmechsim bench --stability: " << e.what() << "\n";
+        return 2;
+      }
+      out << "\n";
+      if (!options.quick || cut.stiffness > 0) {
+        const double lo = (row.stable_h ? *row.stable_h : h0 / span) / 4;
+        const double hi = (row.unstable_h ? *row.unstable_h : h0 * span) * 4;
+        row.spectral = spectral(scene_path, *base, overrides, lo, hi);
+      }
+      rows.push_back(row);
+    }
+  }
+
+  // Table.
+  auto h_text = [](const std::optional<double>& h, const char* none) { return h ? format_us(*h) : std::string(none); };
+  out << "\n| cut | scheme | stable at | unstable at | rho = 1 at (linear map) | runs |\n|---|---|---|---|---|---|\n";
+  for (const Row& r : rows) {
+    std::string lin;
+    if (!r.spectral.linear) lin = r.spectral.note.empty() ? "-" : r.spectral.note;
+    else lin = r.spectral.crossing ? format_us(*r.spectral.crossing) : "> " + format_us(r.spectral.rho.back().first);
+    out << "| " << r.cut << " | " << r.scheme << " | " << h_text(r.stable_h, "none found") << " | "
+        << h_text(r.unstable_h, "none found") << " | " << lin << " | " << r.runs << " |\n";
+  }
+  for (const Row& r : rows)
+    if (r.unstable_h) out << "  " << r.scheme << " at " << format_us(*r.unstable_h) << ": " << r.why << "\n";
+
+  if (!options.json_path.empty()) {
+    json doc;
+    doc["schema_version"] = tools::schema_version;
+    doc["kind"] = "stability";
+    doc["scene"] = base->name;
+    doc["scene_file"] = scene_path;
+    doc["scene_step_s"] = h0;
+    doc["run_time_s"] = base->time.end - base->time.start;
+    doc["min_steps_per_run"] = kMinSteps;
+    doc["overrides"] = options.set_overrides;
+    json jr = json::array();
+    for (const Row& r : rows) {
+      json j = {{"cut", r.cut}, {"scheme", r.scheme}, {"runs", r.runs}, {"why_unstable", r.why}};
+      j["stable_h_s"] = r.stable_h ? json(*r.stable_h) : json(nullptr);
+      j["unstable_h_s"] = r.unstable_h ? json(*r.unstable_h) : json(nullptr);
+      json lin = {{"linear", r.spectral.linear}, {"note", r.spectral.note}};
+      lin["rho_crossing_h_s"] = r.spectral.crossing ? json(*r.spectral.crossing) : json(nullptr);
+      json curve = json::array();
+      for (const auto& [h, rho] : r.spectral.rho) curve.push_back({{"h_s", h}, {"rho", rho}});
+      lin["rho"] = curve;
+      j["linear_analysis"] = lin;
+      jr.push_back(j);
+    }
+    doc["rows"] = jr;
+    try {
+      tools::write_json_file(options.json_path, doc);
+    } catch (const std::exception& e) {
+      out << "mechsim bench --stability: " << e.what() << "\n";
+      return 1;
+    }
+  }
+  return 0;
+}
+
+}  // namespace mechsim::bench
