@@ -22,7 +22,39 @@ double first_crossing(std::span<const double> t, std::span<const double> y, doub
   return NAN;
 }
 
+// Trapezoidal integral of y over t.
+double integral(std::span<const double> t, std::span<const double> y) {
+  double sum = 0.0;
+  for (std::size_t i = 1; i < y.size() && i < t.size(); ++i) sum += 0.5 * (y[i] + y[i - 1]) * (t[i] - t[i - 1]);
+  return sum;
+}
+
+// supplied work = dissipated work + change of the stored energies, each term by name.
+json energy_balance(const config::ReportSpec& r, std::span<const double> t, const SeriesLookup& series) {
+  json f, terms = json::object();
+  double sums[3] = {0.0, 0.0, 0.0};
+  const std::vector<config::SignalRef>* lists[3] = {&r.supplied, &r.dissipated, &r.stored};
+  for (int g = 0; g < 3; ++g)
+    for (const auto& s : *lists[g]) {
+      auto y = series(s);
+      if (y.empty()) return nullptr;
+      const double v = g < 2 ? integral(t, y) : y.back() - y.front();
+      terms[s.full_name()] = v;
+      sums[g] += v;
+    }
+  const double residual = sums[0] - sums[1] - sums[2];
+  f["supplied_J"] = sums[0];
+  f["dissipated_J"] = sums[1];
+  f["stored_change_J"] = sums[2];
+  f["residual_J"] = residual;
+  // Normalised by the supplied work (the figure the balance is about).
+  f["relative_residual"] = std::abs(residual) / std::max(std::abs(sums[0]), 1e-300);
+  f["terms_J"] = terms;
+  return f;
+}
+
 json figure_of(const config::ReportSpec& r, std::span<const double> t, const SeriesLookup& series) {
+  if (r.stat == "energy_balance") return energy_balance(r, t, series);
   auto y = series(r.signal);
   if (y.empty()) return nullptr;
   json f;
@@ -116,7 +148,8 @@ json report_figures(const config::Scene& scene, std::span<const double> t, const
       json ref = figure_of(r, t, *reference);
       if (!ref.is_null()) {
         json diff = json::object();
-        for (const char* key : {"value", "rise_time_s", "settling_time_s", "final_value", "overshoot_pct"})
+        for (const char* key : {"value", "rise_time_s", "settling_time_s", "final_value", "overshoot_pct", "supplied_J",
+                                "dissipated_J", "stored_change_J"})
           if (f.contains(key) && ref.contains(key) && f[key].is_number() && ref[key].is_number())
             diff[key] = relative_difference(f[key].get<double>(), ref[key].get<double>());
         ref.erase("stat");
@@ -145,7 +178,13 @@ void print_figures(const json& figures) {
   auto number = [](const json& j, const char* key) { return j.contains(key) && j[key].is_number() ? j[key].get<double>() : NAN; };
   for (const auto& f : figures) {
     const std::string stat = f["stat"], signal = f["signal"];
-    if (stat == "step_response") {
+    if (stat == "energy_balance") {
+      std::printf("  energy balance: supplied %.6g J = dissipated %.6g J + stored change %.6g J, residual %.3g J (%.3g %%)",
+                  number(f, "supplied_J"), number(f, "dissipated_J"), number(f, "stored_change_J"), number(f, "residual_J"),
+                  100 * number(f, "relative_residual"));
+      if (f.contains("reference"))
+        std::printf("  (reference: residual %.3g %%)", 100 * number(f["reference"], "relative_residual"));
+    } else if (stat == "step_response") {
       std::printf("  step response of %s: rise %.4g s, overshoot %.3g %%, settling %.4g s, final error %.3g",
                   signal.c_str(), number(f, "rise_time_s"), number(f, "overshoot_pct"), number(f, "settling_time_s"),
                   number(f, "final_error"));

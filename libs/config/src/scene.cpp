@@ -201,10 +201,11 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
 
   if (auto rep = root.optional_child("report")) {
     if (!rep->is_sequence()) rep->fail("expected a list of figures such as {min: signal, at: signal, unit: deg}");
-    const std::vector<std::string> stats{"min", "max", "max_abs", "final", "time_true", "step_response"};
+    const std::vector<std::string> stats{"min", "max", "max_abs", "final", "time_true", "step_response", "energy_balance"};
     for (std::size_t i = 0; i < rep->size(); ++i) {
       ConfigNode r = rep->at(i);
-      r.allow_only({"min", "max", "max_abs", "final", "time_true", "step_response", "at", "unit", "target", "band"});
+      r.allow_only({"min", "max", "max_abs", "final", "time_true", "step_response", "energy_balance", "at", "unit",
+                    "target", "band"});
       ReportSpec spec;
       int found = 0;
       for (const auto& s : stats)
@@ -212,7 +213,29 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
           spec.stat = s;
           ++found;
         }
-      if (found != 1) r.fail("expected exactly one of min, max, max_abs, final, time_true, step_response");
+      if (found != 1) r.fail("expected exactly one of min, max, max_abs, final, time_true, step_response, energy_balance");
+      if (spec.stat == "energy_balance") {
+        // {supplied: [power signals], dissipated: [power signals], stored: [energy signals]}
+        ConfigNode b = r.child("energy_balance");
+        if (!b.is_map()) b.fail("expected a map {supplied: [signals in W], dissipated: [signals in W], stored: [signals in J]}");
+        b.allow_only({"supplied", "dissipated", "stored"});
+        for (auto [key, list] : {std::pair{"supplied", &spec.supplied}, std::pair{"dissipated", &spec.dissipated},
+                                 std::pair{"stored", &spec.stored}}) {
+          auto l = b.optional_child(key);
+          if (!l) continue;
+          if (!l->is_sequence()) l->fail("expected a list of participant.output signals");
+          for (std::size_t k = 0; k < l->size(); ++k) {
+            ConfigNode s = l->at(k);
+            SignalRef ref = parse_signal_ref(s, s.as_string());
+            if (!scene.find_participant(ref.participant)) s.fail("expected a participant of this scene in '" + ref.full_name() + "'");
+            list->push_back(ref);
+          }
+        }
+        if (spec.supplied.empty()) b.fail("expected at least one supplied power signal (supplied: [participant.output])");
+        spec.signal = spec.supplied.front();
+        scene.report.push_back(spec);
+        continue;
+      }
       spec.signal = parse_signal_ref(r.child(spec.stat), r.string(spec.stat));
       if (r.has("at")) spec.at = parse_signal_ref(r.child("at"), r.string("at"));
       if (r.has("unit")) {

@@ -10,7 +10,7 @@ const InputGroup* NodeType::group_for(const transport::TopicType& t) const {
 
 const std::vector<NodeType>& node_types() {
   static const std::vector<NodeType> types{cam_shaft_node_type(), follower_node_type(), servo_amplifier_node_type(),
-                                              tachometer_node_type(), slide_node_type()};
+                                              tachometer_node_type(), slide_node_type(), cvt_node_type()};
   return types;
 }
 

@@ -213,6 +213,8 @@ ScenePlan ScenePlan::build(const config::Scene& scene) {
   for (const auto& r : scene.report) {
     plan.resolve(r.signal);
     if (r.at) plan.resolve(*r.at);
+    for (const auto* list : {&r.supplied, &r.dissipated, &r.stored})
+      for (const auto& s : *list) plan.resolve(s);
   }
   return plan;
 }

@@ -15,7 +15,8 @@ FieldInfo flag(const char* name) { return {name, FieldKind::boolean}; }
 // Mirrors idl/cam.idl.
 const TopicType kCamState{"mechsim::msg::CamState", "cam.idl",
                           {f64("angle"), f64("speed"), f64("acceleration"), f64("lift"), f64("lift_d1"),
-                           f64("lift_d2"), f64("pressure_angle"), f64("shaft_torque"), f64("drive_power")}};
+                           f64("lift_d2"), f64("pressure_angle"), f64("shaft_torque"), f64("drive_power"),
+                           f64("drive_load_torque"), f64("drive_load_inertia")}};
 // Mirrors idl/follower.idl.
 const TopicType kFollowerState{"mechsim::msg::FollowerState", "follower.idl",
                                {f64("position"), f64("velocity"), f64("acceleration"),
@@ -34,6 +35,10 @@ const TopicType kTachoState{"mechsim::msg::TachoState", "tacho.idl",
 const TopicType kSlideState{"mechsim::msg::SlideState", "slide.idl",
                             {f64("spindle_angle"), f64("spindle_speed"), f64("slide_position"), f64("slide_speed"),
                              f64("coupling_torque")}};
+// Mirrors idl/cvt.idl.
+const TopicType kCvtState{"mechsim::msg::CvtState", "cvt.idl",
+                          {f64("input_speed"), f64("output_speed"), f64("output_acceleration"), f64("ratio"), f64("ratio_setting"), f64("ratio_command"), f64("motor_torque"), f64("belt_torque"), f64("input_torque"), f64("output_torque"), f64("eta_PB"), f64("eta_SYS"), f64("clamping_force"), f64("slip_margin"), f64("sigma_1"), f64("sigma_2"), f64("sigma_3"), f64("sigma_4"), f64("belt_loss"), f64("bearing_loss"), f64("flags"),
+                           flag("gross_slip"), flag("torque_reversal"), flag("outside_model")}};
 // Mirrors idl/coupling.idl (up to 16 torque levels per macro step).
 TopicType coupling_prediction_type() {
   TopicType t{"mechsim::msg::CouplingPrediction", "coupling.idl", {f64("angle"), f64("assumed_torque"), f64("levels")}};
@@ -46,7 +51,7 @@ const TopicType kCouplingPrediction = coupling_prediction_type();
 
 const std::vector<const TopicType*>& all_topic_types() {
   static const std::vector<const TopicType*> types{&kCamState, &kFollowerState, &kServoCommand, &kTachoState,
-                                                          &kSlideState, &kCouplingPrediction};
+                                                          &kSlideState, &kCouplingPrediction, &kCvtState};
   return types;
 }
 

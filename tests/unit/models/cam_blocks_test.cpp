@@ -42,7 +42,7 @@ TEST(CamShaftBlock, DeclaresItsPorts) {
   }
   EXPECT_EQ(output_names(b),
             (std::vector<std::string>{"angle", "speed", "lift", "lift_d1", "lift_d2",
-                                      "pressure_angle", "shaft_torque", "drive_power", "acceleration"}));
+                                      "pressure_angle", "shaft_torque", "drive_power", "acceleration", "drive_load_torque", "drive_load_inertia", "kinetic_energy"}));
   for (const auto& o : b.outputs()) {
     const bool through = o.name == "shaft_torque" || o.name == "drive_power";
     EXPECT_EQ(o.feedthrough, through ? std::vector<int>{0} : std::vector<int>{}) << o.name;
@@ -91,7 +91,7 @@ TEST(FollowerBlock, DeclaresItsPorts) {
             (std::vector<std::string>{"position", "velocity", "acceleration", "contact_force",
                                       "contact", "drive_torque", "spring_force", "load_force",
                                       "inertia_force", "drive_torque_rest", "reflected_inertia",
-                                      "lift_off_count"}));
+                                      "lift_off_count", "load_power", "kinetic_energy", "spring_energy"}));
   // Every output but the (constant) lift-off count depends directly on some input (the
   // block has no state).
   for (const auto& o : b.outputs())

@@ -49,7 +49,7 @@ void add_roller(json& j, const RollerDesign& d) {
   j["notes"] = d.input_case.notes;
   json loads = json::array();
   for (const auto& l : in.follower.loads)
-    loads.push_back({{"from_deg", l.start_rad / degree}, {"to_deg", l.end_rad / degree}, {"force_n", l.force_n}});
+    loads.push_back({{"from_deg", l.start_rad / degree}, {"to_deg", l.end_rad / degree}, {"force_n", l.force_n}, {"end_force_n", l.ramp ? l.end_force_n : l.force_n}});
   const auto& spring = in.follower.spring;
   j["inputs"] = {{"pitch_radius_mm", in.geometry.pitch_radius_m * 1e3},
                  {"roller_radius_mm", in.geometry.roller_radius_m * 1e3},

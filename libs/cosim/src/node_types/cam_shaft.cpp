@@ -52,9 +52,10 @@ namespace {
 // `drive:` (default constant speed) and, for a torque drive, the shaft inertia.
 void parse_drive(const ConfigNode& p, cam::CamShaftParams& params) {
   const std::optional<ConfigNode> drive = p.optional_child("drive");
-  if (drive && !drive->is_map()) drive->fail("expected a map {type: constant_speed | constant_torque | motor_line, ...}");
+  if (drive && !drive->is_map())
+    drive->fail("expected a map {type: constant_speed | constant_torque | motor_line | gear, ...}");
   const std::string type =
-      drive ? drive->choice("type", {"constant_speed", "constant_torque", "motor_line"}) : "constant_speed";
+      drive ? drive->choice("type", {"constant_speed", "constant_torque", "motor_line", "gear"}) : "constant_speed";
   if (type == "constant_speed") {
     if (drive) drive->allow_only({"type", "speed"});
     const bool inner = drive && drive->has("speed");
@@ -68,7 +69,15 @@ void parse_drive(const ConfigNode& p, cam::CamShaftParams& params) {
                           "set drive.type to constant_torque or motor_line");
     return;
   }
-  if (type == "constant_torque") {
+  if (type == "gear") {
+    // Driven by another participant's shaft (a cvt) through a rigid, lossless gear
+    // (docs/press-line.md): the speed comes from there, the inertia is carried there.
+    drive->allow_only({"type", "ratio"});
+    params.gear_ratio = drive->positive_quantity("ratio", dim::dimensionless);
+    if (p.has("initial_speed"))
+      p.child("initial_speed").fail("expected no initial_speed with a gear drive: the driving shaft sets the speed");
+    params.speed = p.non_negative_quantity_or("speed", dim::angular_velocity, 0.0);  // nominal, for the analyses
+  } else if (type == "constant_torque") {
     drive->allow_only({"type", "torque"});
     params.drive.type = cam::DriveType::constant_torque;
     params.drive.torque_nm = drive->quantity("torque", dim::torque);
@@ -78,9 +87,11 @@ void parse_drive(const ConfigNode& p, cam::CamShaftParams& params) {
     params.drive.stall_torque_nm = drive->positive_quantity("stall_torque", dim::torque);
     params.drive.no_load_speed_rad_s = drive->positive_quantity("no_load_speed", dim::angular_velocity);
   }
-  // Nominal speed: the design speed of the analyses and the default initial speed.
-  params.speed = p.positive_quantity("speed", dim::angular_velocity);
-  params.initial_speed = p.quantity_or("initial_speed", dim::angular_velocity, params.speed);
+  if (type != "gear") {
+    // Nominal speed: the design speed of the analyses and the default initial speed.
+    params.speed = p.positive_quantity("speed", dim::angular_velocity);
+    params.initial_speed = p.quantity_or("initial_speed", dim::angular_velocity, params.speed);
+  }
   double inertia = p.non_negative_quantity_or("inertia", dim::inertia, 0.0);
   if (auto flywheel = p.optional_child("flywheel")) {
     if (!flywheel->is_map()) flywheel->fail("expected a map {inertia} or {radius, thickness, density}");
@@ -96,7 +107,7 @@ void parse_drive(const ConfigNode& p, cam::CamShaftParams& params) {
                                    flywheel->positive_quantity_or("density", dim::density, 7800.0));
     }
   }
-  if (!(inertia > 0.0))
+  if (!(inertia > 0.0) && type != "gear")
     p.fail("expected a shaft inertia > 0 for a torque drive: give inertia (shaft, kg m^2) and/or a flywheel");
   params.inertia_kgm2 = inertia;
 }
@@ -126,8 +137,8 @@ std::unique_ptr<models::Block> make_cam_shaft(const ConfigNode& p, const ConfigN
 
 NodeType cam_shaft_node_type() {
   return {"cam_shaft",
-          "cam shaft: motion law and pressure angle, driven at constant speed or by a torque (constant, motor "
-          "line) on its inertia and flywheel; publishes CamState",
+          "cam shaft: motion law and pressure angle, driven at constant speed, by a torque (constant, motor "
+          "line) on its inertia and flywheel, or through a gear by a cvt; publishes CamState",
           transport::find_topic_type("CamState"),
           "state",
           make_cam_shaft,
@@ -135,7 +146,10 @@ NodeType cam_shaft_node_type() {
           // dynamic shaft carries m S'^2 itself (no algebraic loop); at constant speed
           // drive_torque_rest equals drive_torque.
           {{transport::find_topic_type("FollowerState"),
-            {{"drive_torque_rest", "load_torque"}, {"reflected_inertia", "reflected_inertia"}}}}};
+            {{"drive_torque_rest", "load_torque"}, {"reflected_inertia", "reflected_inertia"}}},
+           // A gear drive: the driving shaft's speed and acceleration (docs/press-line.md).
+           {transport::find_topic_type("CvtState"),
+            {{"output_speed", "drive_speed"}, {"output_acceleration", "drive_acceleration"}}}}};
 }
 
 }  // namespace mechsim::cosim

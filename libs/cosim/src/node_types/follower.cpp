@@ -64,8 +64,12 @@ FollowerConfig parse_follower_params(const ConfigNode& p) {
     if (!loads->is_sequence()) loads->fail("expected a list of {from, to, force}");
     for (std::size_t i = 0; i < loads->size(); ++i) {
       ConfigNode l = loads->at(i);
-      l.allow_only({"from", "to", "force"});
+      l.allow_only({"from", "to", "force", "end_force"});
       fol::FunctionalLoad load{l.quantity("from", dim::angle), l.quantity("to", dim::angle), l.quantity("force", dim::force)};
+      if (l.has("end_force")) {  // linear in the cam angle from `force` at `from` to `end_force` at `to`
+        load.ramp = true;
+        load.end_force_n = l.quantity("end_force", dim::force);
+      }
       if (!(load.end_rad > load.start_rad)) l.child("to").fail("expected an end angle after 'from'");
       params.loads.push_back(load);
     }

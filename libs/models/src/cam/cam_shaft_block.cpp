@@ -9,9 +9,10 @@ namespace mechsim::models::cam {
 
 namespace {
 // Port indices, fixed by the declaration order in the constructor.
-enum Input { in_load_torque, in_reflected_inertia };
+enum Input { in_load_torque, in_reflected_inertia, in_drive_speed, in_drive_acceleration };
 enum Output { out_angle, out_speed, out_lift, out_lift_d1, out_lift_d2, out_pressure_angle,
-              out_shaft_torque, out_drive_power, out_acceleration };
+              out_shaft_torque, out_drive_power, out_acceleration, out_drive_load_torque,
+              out_drive_load_inertia, out_kinetic_energy };
 enum State { x_angle, x_speed };
 }  // namespace
 
@@ -22,6 +23,13 @@ CamShaftBlock::CamShaftBlock(CamShaftParams params) : Block("cam_shaft"), params
   if (!std::isfinite(params_.speed) || !std::isfinite(params_.initial_angle))
     throw std::invalid_argument("cam_shaft: speed and initial angle must be finite");
   validate(params_.drive);
+  if (!(params_.gear_ratio >= 0.0 && std::isfinite(params_.gear_ratio)))
+    throw std::invalid_argument("cam_shaft: the gear ratio must be finite and >= 0");
+  const bool driven = is_driven();
+  if (driven && params_.drive.is_torque_source())
+    throw std::invalid_argument("cam_shaft: a shaft driven through a gear has no drive torque of its own");
+  if (driven && !(params_.inertia_kgm2 >= 0.0 && std::isfinite(params_.inertia_kgm2)))
+    throw std::invalid_argument("cam_shaft: the shaft inertia must be finite and >= 0");
   const bool dynamic = params_.drive.is_torque_source();
   if (dynamic) {
     // Dwells reflect no follower inertia: the shaft's own inertia must carry ω̇ there.
@@ -32,15 +40,31 @@ CamShaftBlock::CamShaftBlock(CamShaftParams params) : Block("cam_shaft"), params
   }
   const int load = declare_input("load_torque", "N*m", 0.0);
   const int reflected = declare_input("reflected_inertia", "kg*m^2", 0.0);
+  const int dspeed = driven ? declare_input("drive_speed", "rad/s", 0.0) : -1;
+  const int daccel = driven ? declare_input("drive_acceleration", "rad/s^2", 0.0) : -1;
+  using Ft = std::vector<int>;
   declare_output("angle", "rad");
-  declare_output("speed", "rad/s");
+  declare_output("speed", "rad/s", driven ? Ft{dspeed} : Ft{});
   declare_output("lift", "m");
   declare_output("lift_d1", "m/rad");
   declare_output("lift_d2", "m/rad^2");
   declare_output("pressure_angle", "rad");
-  declare_output("shaft_torque", "N*m", dynamic ? std::vector<int>{} : std::vector<int>{load});
-  declare_output("drive_power", "W", dynamic ? std::vector<int>{} : std::vector<int>{load});
-  declare_output("acceleration", "rad/s^2", dynamic ? std::vector<int>{load, reflected} : std::vector<int>{});
+  if (driven) {
+    declare_output("shaft_torque", "N*m", {load, reflected, daccel});
+    declare_output("drive_power", "W", {load, reflected, daccel, dspeed});
+    declare_output("acceleration", "rad/s^2", {daccel});
+    declare_output("drive_load_torque", "N*m", {load});
+    declare_output("drive_load_inertia", "kg*m^2", {reflected});
+    declare_output("kinetic_energy", "J", {dspeed});
+    declare_state("angle", "rad");
+    return;
+  }
+  declare_output("shaft_torque", "N*m", dynamic ? Ft{} : Ft{load});
+  declare_output("drive_power", "W", dynamic ? Ft{} : Ft{load});
+  declare_output("acceleration", "rad/s^2", dynamic ? Ft{load, reflected} : Ft{});
+  declare_output("drive_load_torque", "N*m");
+  declare_output("drive_load_inertia", "kg*m^2");
+  declare_output("kinetic_energy", "J");
   if (dynamic) {
     declare_state("angle", "rad");
     declare_state("speed", "rad/s");
@@ -53,6 +77,10 @@ double CamShaftBlock::angular_acceleration(double speed, double load_torque_rest
 }
 
 void CamShaftBlock::initial_state(double, std::span<double> x) const {
+  if (is_driven()) {
+    x[x_angle] = params_.initial_angle;
+    return;
+  }
   if (!has_dynamic_drive()) return;
   x[x_angle] = params_.initial_angle;
   x[x_speed] = params_.initial_speed.value_or(params_.speed);
@@ -60,6 +88,10 @@ void CamShaftBlock::initial_state(double, std::span<double> x) const {
 
 void CamShaftBlock::derivatives(double, std::span<const double> x, std::span<const double> u,
                                 std::span<double> dxdt) const {
+  if (is_driven()) {
+    dxdt[x_angle] = u[in_drive_speed] / params_.gear_ratio;
+    return;
+  }
   if (!has_dynamic_drive()) return;
   dxdt[x_angle] = x[x_speed];
   dxdt[x_speed] = angular_acceleration(x[x_speed], u[in_load_torque], u[in_reflected_inertia]);
@@ -68,7 +100,17 @@ void CamShaftBlock::derivatives(double, std::span<const double> x, std::span<con
 void CamShaftBlock::calc_outputs(double t, std::span<const double> x, std::span<const double> u,
                                  std::span<double> y) const {
   double theta, omega, omega_dot, torque;
-  if (has_dynamic_drive()) {
+  double load_torque_out = 0.0, load_inertia_out = 0.0;
+  if (is_driven()) {
+    const double g = params_.gear_ratio;
+    const double J = params_.inertia_kgm2 + u[in_reflected_inertia];
+    theta = x[x_angle];
+    omega = u[in_drive_speed] / g;
+    omega_dot = u[in_drive_acceleration] / g;
+    torque = u[in_load_torque] + J * omega_dot;  // what the gear delivers to the cam shaft
+    load_torque_out = u[in_load_torque] / g;
+    load_inertia_out = J / (g * g);
+  } else if (has_dynamic_drive()) {
     theta = x[x_angle];
     omega = x[x_speed];
     omega_dot = angular_acceleration(omega, u[in_load_torque], u[in_reflected_inertia]);
@@ -92,6 +134,9 @@ void CamShaftBlock::calc_outputs(double t, std::span<const double> x, std::span<
   y[out_shaft_torque] = torque;
   y[out_drive_power] = torque * omega;
   y[out_acceleration] = omega_dot;
+  y[out_drive_load_torque] = load_torque_out;
+  y[out_drive_load_inertia] = load_inertia_out;
+  y[out_kinetic_energy] = 0.5 * params_.inertia_kgm2 * omega * omega;
 }
 
 }  // namespace mechsim::models::cam

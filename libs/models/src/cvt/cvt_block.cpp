@@ -5,16 +5,35 @@
 
 namespace mechsim::models::cvt {
 
-CvtBlock::CvtBlock(CvtBlockParams params) : Block("cvt"), p_(params), model_(params.cvt) {
+CvtBlock::CvtBlock(CvtBlockParams params) : Block("cvt"), p_(std::move(params)), model_(p_.cvt) {
   if (!(p_.J_C > 0 && p_.J_D >= 0 && p_.stall_torque > 0 && p_.no_load_speed > 0 && p_.ratio_time_constant > 0))
     throw CvtInputError("cvt block: J_C, stall torque, no-load speed and ratio time constant must be > 0, J_D >= 0");
+  if (!(p_.s_table_min > 0 && p_.s_table_max > p_.s_table_min && p_.s_table_points >= 2))
+    throw CvtInputError("cvt block: the shape table needs 0 < s_min < s_max and at least 2 points");
   if (!(p_.s0 >= p_.s_table_min && p_.s0 <= p_.s_table_max))
     throw CvtInputError("cvt block: the initial ratio setting must lie in the tabulated range");
+  if (!(std::isfinite(p_.omega0) && p_.omega0 >= 0))
+    throw CvtInputError("cvt block: the initial input speed must be finite and >= 0");
+  for (std::size_t k = 0; k < p_.ratio_schedule.size(); ++k) {
+    const auto& [t, s] = p_.ratio_schedule[k];
+    if (!std::isfinite(t) || (k > 0 && t < p_.ratio_schedule[k - 1].first))
+      throw CvtInputError("cvt block: the ratio schedule's times must be finite and non-decreasing");
+    if (!(s >= p_.s_table_min && s <= p_.s_table_max))
+      throw CvtInputError("cvt block: every ratio setting of the schedule must lie in the tabulated range");
+  }
   model_.tabulate_shapes(p_.s_table_min, p_.s_table_max, p_.s_table_points);
+  if (p_.belt_table) {
+    if (p_.clamp != ClampMode::safety_factor)
+      throw CvtInputError("cvt block: the tabulated belt map needs safety-factor clamping (use direct evaluation with a clamping force)");
+    if (p_.table_s_points < 2 || p_.table_torque_points < 2 || p_.table_speed_points < 2)
+      throw CvtInputError("cvt block: the belt map needs at least 2 points per axis");
+    build_table();
+  }
 
-  in_.ratio_command = declare_input("ratio_command", "m", p_.s0);
+  if (p_.ratio_schedule.empty()) in_.ratio_command = declare_input("ratio_command", "m", p_.s0);
   in_.load_torque = declare_input("load_torque", "N m", 0.0);
-  const std::vector<int> ft{in_.load_torque};
+  in_.load_inertia = declare_input("load_inertia", "kg m^2", 0.0);
+  const std::vector<int> ft{in_.load_torque, in_.load_inertia};
   out_.input_speed = declare_output("input_speed", "rad/s");
   out_.output_speed = declare_output("output_speed", "rad/s");
   out_.ratio = declare_output("ratio", "1");
@@ -34,6 +53,14 @@ CvtBlock::CvtBlock(CvtBlockParams params) : Block("cvt"), p_(params), model_(par
   out_.belt_loss = declare_output("belt_loss", "W", ft);
   out_.bearing_loss = declare_output("bearing_loss", "W", ft);
   out_.flags = declare_output("flags", "1", ft);
+  out_.output_acceleration = declare_output("output_acceleration", "rad/s^2", ft);
+  const std::vector<int> cmd_ft = in_.ratio_command >= 0 ? std::vector<int>{in_.ratio_command} : std::vector<int>{};
+  out_.ratio_command = declare_output("ratio_command", "m", cmd_ft);
+  out_.motor_power = declare_output("motor_power", "W");
+  out_.kinetic_energy = declare_output("kinetic_energy", "J");
+  out_.gross_slip = declare_output("gross_slip", "1", ft);
+  out_.torque_reversal = declare_output("torque_reversal", "1", ft);
+  out_.outside_model = declare_output("outside_model", "1", ft);
   st_.input_speed = declare_state("input_speed", "rad/s");
   st_.ratio_setting = declare_state("ratio_setting", "m");
 }
@@ -43,59 +70,221 @@ void CvtBlock::initial_state(double, std::span<double> x) const {
   x[st_.ratio_setting] = p_.s0;
 }
 
-CvtBlock::Solution CvtBlock::solve(std::span<const double> x, std::span<const double> u) const {
-  Solution sol;
-  const double w = std::max(x[st_.input_speed], 0.0);  // the motor line does not reverse the shaft
-  const double s = std::clamp(x[st_.ratio_setting], p_.s_table_min, p_.s_table_max);
-  const double s_cmd = std::clamp(u[in_.ratio_command], p_.s_table_min, p_.s_table_max);
-  sol.s_dot = (s_cmd - x[st_.ratio_setting]) / p_.ratio_time_constant;
-  const double h = 1e-5;  // i'(s) by central differences on the tabulated shapes
-  const double s_lo = std::max(s - h, p_.s_table_min), s_hi = std::min(s + h, p_.s_table_max);
-  sol.di_ds = (model_.shape(s_hi).ratio() - model_.shape(s_lo).ratio()) / (s_hi - s_lo);
-  sol.T_M = p_.stall_torque * (1.0 - w / p_.no_load_speed);
-  const double T_P = u[in_.load_torque];
+double CvtBlock::ratio_command(double t, std::span<const double> u) const {
+  if (in_.ratio_command >= 0) return u[in_.ratio_command];
+  const auto& sch = p_.ratio_schedule;
+  if (t <= sch.front().first) return sch.front().second;
+  for (std::size_t k = 1; k < sch.size(); ++k) {
+    if (t < sch[k].first) {
+      const auto& [t0, s0] = sch[k - 1];
+      const auto& [t1, s1] = sch[k];
+      return s0 + (s1 - s0) * (t - t0) / (t1 - t0);  // t0 < t < t1 here: a step never divides by 0
+    }
+  }
+  return sch.back().second;
+}
 
+void CvtBlock::build_table() {
+  Table& T = table_;
+  const CvtParams& c = p_.cvt;
+  T.ns = p_.table_s_points;
+  T.nt = p_.table_torque_points;
+  T.nw = p_.table_speed_points;
+  T.s0 = p_.s_table_min;
+  T.ds = (p_.s_table_max - p_.s_table_min) / (T.ns - 1);
+  T.t0 = c.torque_min;
+  T.dt = (c.torque_max - c.torque_min) / (T.nt - 1);
+  T.w0 = c.speed_min;
+  T.dw = (c.speed_max - c.speed_min) / (T.nw - 1);
+  T.v.assign(static_cast<std::size_t>(T.ns * T.nt * T.nw * Table::kFields), 0.0);
+  CvtOperatingPoint op;
+  op.clamp = ClampMode::safety_factor;
+  op.v_K = p_.v_K;
+  op.level = p_.level;
+  for (int is = 0; is < T.ns; ++is)
+    for (int it = 0; it < T.nt; ++it)
+      for (int iw = 0; iw < T.nw; ++iw) {
+        op.s = std::min(T.s0 + is * T.ds, p_.s_table_max);
+        op.torque = T.t0 + it * T.dt;
+        op.omega_C = T.w0 + iw * T.dw;
+        const CvtResult r = model_.evaluate(op);
+        if (!belt_state_modelled(r.flags) || !std::isfinite(r.eta_PB))
+          throw CvtInputError("cvt block: the belt map has no modelled state at s = " + std::to_string(op.s * 1e3) +
+                              " mm, T_C = " + std::to_string(op.torque) + " N m (" + flag_names(r.flags) + ")");
+        double* v = &T.v[static_cast<std::size_t>(((is * T.nt + it) * T.nw + iw) * Table::kFields)];
+        v[0] = r.eta_PB;
+        v[1] = r.F_K / r.T_over_r;
+        v[2] = r.v_KD;
+        for (int k = 0; k < 4; ++k) v[3 + k] = r.sigma[k];  // NaN at L0: interpolates to NaN
+      }
+}
+
+CvtResult CvtBlock::table_belt(double s, double w, double T_C) const {
+  const Table& T = table_;
+  const CvtParams& c = p_.cvt;
+  CvtResult r;
+  r.level = p_.level;
+  const BeltShape shape = model_.shape(s);
+  r.s = s;
+  r.ratio = shape.ratio();
+  r.r_D = c.r_C * shape.r_D();
+  r.omega_C = w;
+  r.omega_D = r.ratio * w;
+  r.T_C = T_C;
+  r.T_over_r = T_C / c.r_C;
+  r.v_PB = w * c.r_C;
+  r.v_K = p_.v_K;
+  if (s < c.s_min || s > c.s_max || T_C < c.torque_min || T_C > c.torque_max || w < c.speed_min || w > c.speed_max)
+    r.flags |= kOutsideValidatedRange;
+  if (w == 0.0) r.flags |= kZeroSpeed;
+  if (T_C <= 0.0) {
+    r.flags |= T_C == 0.0 ? kZeroTorque : kTorqueReversal;
+    r.eta_PB = T_C == 0.0 ? 1.0 : NAN;
+    r.F_K = 0.0;
+  }
+  // Trilinear interpolation, coordinates clamped to the table (outside: the edge's values, flagged above).
+  auto cell = [](double x, double x0, double dx, int n, int& i, double& f) {
+    double u = (x - x0) / dx;
+    u = std::clamp(u, 0.0, static_cast<double>(n - 1));
+    i = std::min(static_cast<int>(u), n - 2);
+    f = u - i;
+  };
+  int is, it, iw;
+  double fs, ft, fw;
+  cell(s, T.s0, T.ds, T.ns, is, fs);
+  cell(T_C, T.t0, T.dt, T.nt, it, ft);
+  cell(w, T.w0, T.dw, T.nw, iw, fw);
+  double v[Table::kFields] = {};
+  for (int a = 0; a < 2; ++a)
+    for (int b = 0; b < 2; ++b)
+      for (int d = 0; d < 2; ++d) {
+        const double wgt = (a ? fs : 1 - fs) * (b ? ft : 1 - ft) * (d ? fw : 1 - fw);
+        const double* src = &T.v[static_cast<std::size_t>((((is + a) * T.nt + it + b) * T.nw + iw + d) * Table::kFields)];
+        for (int k = 0; k < Table::kFields; ++k) v[k] += wgt * src[k];
+      }
+  if (T_C > 0.0) {
+    r.F_K = v[1] * r.T_over_r;
+    r.v_KD = v[2];
+    for (int k = 0; k < 4; ++k) r.sigma[k] = v[3 + k];
+    // The slip loss (η_PB) is a fraction of T_C ω_C at the table's torques; a tiny torque
+    // whose centrifugal slip loss would exceed it is not resolved by the table: flagged
+    // through the range check (T_C < 20 N m) like every state below the map.
+    r.eta_PB = v[0];
+    r.P_loss_belt = (1.0 - r.eta_PB) * T_C * w;
+  }
+  for (double sig : r.sigma)
+    if (sig > c.sigma_admissible) r.flags |= kStressExceeded;
+  const double Tr = r.T_over_r > 0 ? r.T_over_r : 0.0;
+  r.bearings_prim = model_.bearing_losses(true, c.r_C, w, r.F_K, Tr);
+  r.bearings_sec = model_.bearing_losses(false, r.r_D, r.omega_D, r.F_K, Tr);
+  r.T_L_prim = r.bearings_prim.loss_torque();
+  r.T_L_sec = r.bearings_sec.loss_torque();
+  r.T_1 = T_C + r.T_L_prim;
+  if (std::isfinite(r.eta_PB)) {
+    r.T_D = r.eta_PB * T_C / r.ratio;
+    r.T_2 = r.T_D - r.T_L_sec;
+    r.eta_SYS = r.T_1 != 0.0 ? (r.T_2 * r.omega_D) / (r.T_1 * w) : NAN;
+  } else {
+    r.T_2 = r.T_D = r.eta_SYS = NAN;
+  }
+  return r;
+}
+
+CvtResult CvtBlock::belt(double s, double omega_C, double T_C) const {
+  if (p_.belt_table) return table_belt(s, omega_C, T_C);
   CvtOperatingPoint op;
   op.s = s;
-  op.omega_C = w;
+  op.omega_C = omega_C;
+  op.torque = T_C;
   op.clamp = p_.clamp;
   op.v_K = p_.v_K;
   op.F_K_applied = p_.F_K;
   op.level = p_.level;
+  return model_.evaluate(op);
+}
+
+CvtBlock::Solution CvtBlock::solve(double t, std::span<const double> x, std::span<const double> u) const {
+  Solution sol;
+  unsigned bad = 0;
+  const double w = std::max(x[st_.input_speed], 0.0);  // the motor line does not reverse the shaft
+  double s = x[st_.ratio_setting];
+  if (!(s >= p_.s_table_min && s <= p_.s_table_max)) {
+    bad |= kBadInput;
+    s = std::isfinite(s) ? std::clamp(s, p_.s_table_min, p_.s_table_max) : p_.s0;
+  }
+  sol.s_cmd = ratio_command(t, u);
+  if (!(sol.s_cmd >= p_.s_table_min && sol.s_cmd <= p_.s_table_max)) {
+    // A command outside the geometric range: the actuator stops at its end (NaN: holds).
+    bad |= kBadInput;
+    sol.s_cmd = std::isfinite(sol.s_cmd) ? std::clamp(sol.s_cmd, p_.s_table_min, p_.s_table_max) : s;
+  }
+  sol.s_dot = (sol.s_cmd - s) / p_.ratio_time_constant;
+  double T_P = u[in_.load_torque], J_L = u[in_.load_inertia];
+  if (!std::isfinite(T_P)) {
+    bad |= kBadInput;
+    T_P = 0.0;
+  }
+  if (!(J_L >= 0.0 && std::isfinite(J_L))) {
+    bad |= kBadInput;
+    J_L = 0.0;
+  }
+  const double JD = p_.J_D + J_L;
+  const double h = 1e-5;  // i'(s) by central differences on the tabulated shapes
+  const double s_lo = std::max(s - h, p_.s_table_min), s_hi = std::min(s + h, p_.s_table_max);
   const double i = model_.shape(s).ratio();
+  sol.di_ds = (model_.shape(s_hi).ratio() - model_.shape(s_lo).ratio()) / (s_hi - s_lo);
+  sol.T_M = p_.stall_torque * (1.0 - w / p_.no_load_speed);
+
   // Fixed point on T_C from the quasi-static guess (losses and inertia torque are small
   // against T_C, so 4 passes settle it to well below the F_K steps of the map).
   double T_C = std::max(sol.T_M, 0.0);
   for (int k = 0; k < 4; ++k) {
-    op.torque = T_C;
-    sol.belt = model_.evaluate(op);
-    const bool modelled = belt_state_modelled(sol.belt.flags) && std::isfinite(sol.belt.eta_PB);
-    const double eta = modelled ? sol.belt.eta_PB : 1.0;  // outside the model: lossless belt, flagged
-    const double TLp = sol.belt.T_L_prim, TLs = sol.belt.T_L_sec;
-    const double J = p_.J_C + i * i * p_.J_D / eta;
-    sol.omega_dot = (sol.T_M - TLp - i * (TLs + T_P) / eta - p_.J_D * i * sol.di_ds * sol.s_dot * w / eta) / J;
-    T_C = sol.T_M - TLp - p_.J_C * sol.omega_dot;
+    unsigned flags = bad;
+    try {
+      sol.belt = belt(s, w, T_C);
+      flags |= sol.belt.flags;
+    } catch (const CvtInputError&) {
+      sol.belt = CvtResult{};
+      sol.belt.s = s;
+      sol.belt.ratio = i;
+      sol.belt.omega_C = w;
+      sol.belt.omega_D = i * w;
+      flags |= kBadInput;
+    }
+    const bool modelled = belt_state_modelled(flags) && std::isfinite(sol.belt.eta_PB);
+    sol.eta = modelled ? sol.belt.eta_PB : 1.0;  // outside the model: lossless belt, flagged
+    sol.T_L_prim = std::isfinite(sol.belt.T_L_prim) ? sol.belt.T_L_prim : 0.0;
+    sol.T_L_sec = std::isfinite(sol.belt.T_L_sec) ? sol.belt.T_L_sec : 0.0;
+    const double eta = sol.eta;
+    const double J = p_.J_C + i * i * JD / eta;
+    sol.omega_dot = (sol.T_M - sol.T_L_prim - i * (sol.T_L_sec + T_P) / eta - JD * i * sol.di_ds * sol.s_dot * w / eta) / J;
+    T_C = sol.T_M - sol.T_L_prim - p_.J_C * sol.omega_dot;
+    sol.flags = flags;
   }
+  sol.T_C = T_C;
+  sol.omega_D_dot = i * sol.omega_dot + sol.di_ds * sol.s_dot * w;
   return sol;
 }
 
-void CvtBlock::derivatives(double, std::span<const double> x, std::span<const double> u, std::span<double> dxdt) const {
-  const Solution sol = solve(x, u);
+void CvtBlock::derivatives(double t, std::span<const double> x, std::span<const double> u, std::span<double> dxdt) const {
+  const Solution sol = solve(t, x, u);
   dxdt[st_.input_speed] = sol.omega_dot;
   dxdt[st_.ratio_setting] = sol.s_dot;
 }
 
-void CvtBlock::calc_outputs(double, std::span<const double> x, std::span<const double> u, std::span<double> y) const {
-  const Solution sol = solve(x, u);
+void CvtBlock::calc_outputs(double t, std::span<const double> x, std::span<const double> u, std::span<double> y) const {
+  const Solution sol = solve(t, x, u);
   const CvtResult& r = sol.belt;
+  const double w = std::max(x[st_.input_speed], 0.0);
+  const double i = r.ratio, wD = i * w;
   y[out_.input_speed] = x[st_.input_speed];
-  y[out_.output_speed] = r.omega_D;
-  y[out_.ratio] = r.ratio;
+  y[out_.output_speed] = wD;
+  y[out_.ratio] = i;
   y[out_.ratio_setting] = x[st_.ratio_setting];
   y[out_.motor_torque] = sol.T_M;
-  y[out_.belt_torque] = r.T_C;
-  y[out_.input_torque] = r.T_1;
-  y[out_.output_torque] = r.T_2;
+  y[out_.belt_torque] = sol.T_C;
+  y[out_.input_torque] = sol.T_C + sol.T_L_prim;
+  y[out_.output_torque] = sol.eta * sol.T_C / i - sol.T_L_sec;
   y[out_.eta_PB] = r.eta_PB;
   y[out_.eta_SYS] = r.eta_SYS;
   y[out_.clamping_force] = r.F_K;
@@ -104,9 +293,17 @@ void CvtBlock::calc_outputs(double, std::span<const double> x, std::span<const d
   y[out_.sigma2] = r.sigma[1];
   y[out_.sigma3] = r.sigma[2];
   y[out_.sigma4] = r.sigma[3];
-  y[out_.belt_loss] = r.P_loss_belt;
-  y[out_.bearing_loss] = r.T_L_prim * r.omega_C + r.T_L_sec * r.omega_D;
-  y[out_.flags] = static_cast<double>(r.flags);
+  // The powers the equations dissipate: with T_D = η T_C/i the belt loses (1 − η) T_C ω_C.
+  y[out_.belt_loss] = (1.0 - sol.eta) * sol.T_C * w;
+  y[out_.bearing_loss] = sol.T_L_prim * w + sol.T_L_sec * wD;
+  y[out_.flags] = static_cast<double>(sol.flags);
+  y[out_.output_acceleration] = sol.omega_D_dot;
+  y[out_.ratio_command] = sol.s_cmd;
+  y[out_.motor_power] = sol.T_M * w;
+  y[out_.kinetic_energy] = 0.5 * p_.J_C * w * w + 0.5 * p_.J_D * wD * wD;
+  y[out_.gross_slip] = (sol.flags & kGrossSlip) ? 1.0 : 0.0;
+  y[out_.torque_reversal] = (sol.flags & kTorqueReversal) ? 1.0 : 0.0;
+  y[out_.outside_model] = (sol.flags & (kOutsideValidatedRange | kBadInput | kNoSolution)) ? 1.0 : 0.0;
 }
 
 }  // namespace mechsim::models::cvt

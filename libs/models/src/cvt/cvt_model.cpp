@@ -184,7 +184,8 @@ std::string flag_names(unsigned flags) {
   static const std::pair<unsigned, const char*> names[] = {
       {kOutsideValidatedRange, "outside_validated_range"}, {kGrossSlip, "gross_slip"},
       {kStressExceeded, "stress_exceeded"}, {kLinkShift, "link_shift"}, {kZeroTorque, "zero_torque"},
-      {kTorqueReversal, "torque_reversal"}, {kZeroSpeed, "zero_speed"}, {kNoSolution, "no_solution"}};
+      {kTorqueReversal, "torque_reversal"}, {kZeroSpeed, "zero_speed"}, {kNoSolution, "no_solution"},
+      {kBadInput, "bad_input"}};
   std::string out;
   for (const auto& [bit, name] : names) {
     if (flags & bit) {

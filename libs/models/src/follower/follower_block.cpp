@@ -6,7 +6,8 @@ namespace {
 enum Input { in_angle, in_speed, in_lift, in_lift_d1, in_lift_d2, in_pressure_angle, in_acceleration };
 enum Output { out_position, out_velocity, out_acceleration, out_contact_force, out_contact,
               out_drive_torque, out_spring_force, out_load_force, out_inertia_force,
-              out_drive_torque_rest, out_reflected_inertia, out_lift_off_count };
+              out_drive_torque_rest, out_reflected_inertia, out_lift_off_count, out_load_power,
+              out_kinetic_energy, out_spring_energy };
 }  // namespace
 
 FollowerBlock::FollowerBlock(FollowerParams params) : Block("follower"), params_(std::move(params)) {
@@ -31,6 +32,10 @@ FollowerBlock::FollowerBlock(FollowerParams params) : Block("follower"), params_
   declare_output("drive_torque_rest", "N*m", {angle, speed, lift, lift_d1, lift_d2});
   declare_output("reflected_inertia", "kg*m^2", {lift_d1});
   declare_output("lift_off_count", "1");
+  // Energy ports (for a scene's energy_balance figure, docs/scenes.md).
+  declare_output("load_power", "W", {angle, speed, lift_d1});
+  declare_output("kinetic_energy", "J", {speed, lift_d1});
+  declare_output("spring_energy", "J", {lift});
 }
 
 void FollowerBlock::calc_outputs(double, std::span<const double>, std::span<const double> u,
@@ -51,6 +56,11 @@ void FollowerBlock::calc_outputs(double, std::span<const double>, std::span<cons
   y[out_drive_torque_rest] = f.drive_torque_rest_nm;
   y[out_reflected_inertia] = reflected_inertia(params_.mass, u[in_lift_d1]);
   y[out_lift_off_count] = 0.0;
+  // The cam's power M ω splits into these: F_func v + d/dt(½ m v²) + d/dt(F0 S + ½ k S²).
+  const double v = u[in_lift_d1] * omega, S = u[in_lift];
+  y[out_load_power] = f.functional_load_n * v;
+  y[out_kinetic_energy] = 0.5 * params_.mass * v * v;
+  y[out_spring_energy] = params_.spring.preload_n * S + 0.5 * params_.spring.stiffness_n_per_m * S * S;
 }
 
 }  // namespace mechsim::models::follower

@@ -39,7 +39,7 @@ double functional_load(const std::vector<FunctionalLoad>& loads, double theta_ra
   if (theta >= two_pi) theta = 0.0;
   double total = 0.0;
   for (const FunctionalLoad& l : loads)
-    if (theta >= l.start_rad && theta < l.end_rad) total += l.force_n;
+    if (theta >= l.start_rad && theta < l.end_rad) total += l.at(theta);
   return total;
 }
 

@@ -4,6 +4,7 @@
 
 #include "cam.h"
 #include "coupling.h"
+#include "cvt.h"
 #include "follower.h"
 #include "servo.h"
 #include "slide.h"
@@ -24,7 +25,9 @@ std::vector<CycloneType> make_bindings() {
                 MECHSIM_F64(mechsim_msg_CamState, lift_d2),
                 MECHSIM_F64(mechsim_msg_CamState, pressure_angle),
                 MECHSIM_F64(mechsim_msg_CamState, shaft_torque),
-                MECHSIM_F64(mechsim_msg_CamState, drive_power)}});
+                MECHSIM_F64(mechsim_msg_CamState, drive_power),
+                MECHSIM_F64(mechsim_msg_CamState, drive_load_torque),
+                MECHSIM_F64(mechsim_msg_CamState, drive_load_inertia)}});
   b.push_back({find_topic_type("FollowerState"), &mechsim_msg_FollowerState_desc,
                sizeof(mechsim_msg_FollowerState),
                {MECHSIM_F64(mechsim_msg_FollowerState, position),
@@ -53,6 +56,31 @@ std::vector<CycloneType> make_bindings() {
                {MECHSIM_F64(mechsim_msg_SlideState, spindle_angle), MECHSIM_F64(mechsim_msg_SlideState, spindle_speed),
                 MECHSIM_F64(mechsim_msg_SlideState, slide_position), MECHSIM_F64(mechsim_msg_SlideState, slide_speed),
                 MECHSIM_F64(mechsim_msg_SlideState, coupling_torque)}});
+  b.push_back({find_topic_type("CvtState"), &mechsim_msg_CvtState_desc, sizeof(mechsim_msg_CvtState),
+               {MECHSIM_F64(mechsim_msg_CvtState, input_speed),
+                MECHSIM_F64(mechsim_msg_CvtState, output_speed),
+                MECHSIM_F64(mechsim_msg_CvtState, output_acceleration),
+                MECHSIM_F64(mechsim_msg_CvtState, ratio),
+                MECHSIM_F64(mechsim_msg_CvtState, ratio_setting),
+                MECHSIM_F64(mechsim_msg_CvtState, ratio_command),
+                MECHSIM_F64(mechsim_msg_CvtState, motor_torque),
+                MECHSIM_F64(mechsim_msg_CvtState, belt_torque),
+                MECHSIM_F64(mechsim_msg_CvtState, input_torque),
+                MECHSIM_F64(mechsim_msg_CvtState, output_torque),
+                MECHSIM_F64(mechsim_msg_CvtState, eta_PB),
+                MECHSIM_F64(mechsim_msg_CvtState, eta_SYS),
+                MECHSIM_F64(mechsim_msg_CvtState, clamping_force),
+                MECHSIM_F64(mechsim_msg_CvtState, slip_margin),
+                MECHSIM_F64(mechsim_msg_CvtState, sigma_1),
+                MECHSIM_F64(mechsim_msg_CvtState, sigma_2),
+                MECHSIM_F64(mechsim_msg_CvtState, sigma_3),
+                MECHSIM_F64(mechsim_msg_CvtState, sigma_4),
+                MECHSIM_F64(mechsim_msg_CvtState, belt_loss),
+                MECHSIM_F64(mechsim_msg_CvtState, bearing_loss),
+                MECHSIM_F64(mechsim_msg_CvtState, flags),
+                MECHSIM_FLAG(mechsim_msg_CvtState, gross_slip),
+                MECHSIM_FLAG(mechsim_msg_CvtState, torque_reversal),
+                MECHSIM_FLAG(mechsim_msg_CvtState, outside_model)}});
 #define MECHSIM_LEVELS(X) X(1) X(2) X(3) X(4) X(5) X(6) X(7) X(8) X(9) X(10) X(11) X(12) X(13) X(14) X(15) X(16)
 #define MECHSIM_PREDICTED(j) MECHSIM_F64(mechsim_msg_CouplingPrediction, predicted_angle_##j),
 #define MECHSIM_SENSITIVITY(j) MECHSIM_F64(mechsim_msg_CouplingPrediction, sensitivity_##j),

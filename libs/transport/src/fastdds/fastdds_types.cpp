@@ -5,6 +5,7 @@
 
 #include "fastddsgen/camPubSubTypes.h"
 #include "fastddsgen/couplingPubSubTypes.h"
+#include "fastddsgen/cvtPubSubTypes.h"
 #include "fastddsgen/followerPubSubTypes.h"
 #include "fastddsgen/servoPubSubTypes.h"
 #include "fastddsgen/slidePubSubTypes.h"
@@ -84,7 +85,8 @@ std::vector<std::unique_ptr<FastType>> make_bindings() {
                       MECHSIM_F64(CamState, angle), MECHSIM_F64(CamState, speed), MECHSIM_F64(CamState, acceleration),
                       MECHSIM_F64(CamState, lift), MECHSIM_F64(CamState, lift_d1), MECHSIM_F64(CamState, lift_d2),
                       MECHSIM_F64(CamState, pressure_angle), MECHSIM_F64(CamState, shaft_torque),
-                      MECHSIM_F64(CamState, drive_power)}));
+                      MECHSIM_F64(CamState, drive_power), MECHSIM_F64(CamState, drive_load_torque),
+                      MECHSIM_F64(CamState, drive_load_inertia)}));
   b.push_back(std::make_unique<Binding<FollowerState, FollowerStatePubSubType>>(
       "FollowerState",
       std::vector<Slot<FollowerState>>{
@@ -109,6 +111,32 @@ std::vector<std::unique_ptr<FastType>> make_bindings() {
                         MECHSIM_F64(SlideState, spindle_angle), MECHSIM_F64(SlideState, spindle_speed),
                         MECHSIM_F64(SlideState, slide_position), MECHSIM_F64(SlideState, slide_speed),
                         MECHSIM_F64(SlideState, coupling_torque)}));
+  b.push_back(std::make_unique<Binding<CvtState, CvtStatePubSubType>>(
+      "CvtState", std::vector<Slot<CvtState>>{
+          MECHSIM_F64(CvtState, input_speed),
+          MECHSIM_F64(CvtState, output_speed),
+          MECHSIM_F64(CvtState, output_acceleration),
+          MECHSIM_F64(CvtState, ratio),
+          MECHSIM_F64(CvtState, ratio_setting),
+          MECHSIM_F64(CvtState, ratio_command),
+          MECHSIM_F64(CvtState, motor_torque),
+          MECHSIM_F64(CvtState, belt_torque),
+          MECHSIM_F64(CvtState, input_torque),
+          MECHSIM_F64(CvtState, output_torque),
+          MECHSIM_F64(CvtState, eta_PB),
+          MECHSIM_F64(CvtState, eta_SYS),
+          MECHSIM_F64(CvtState, clamping_force),
+          MECHSIM_F64(CvtState, slip_margin),
+          MECHSIM_F64(CvtState, sigma_1),
+          MECHSIM_F64(CvtState, sigma_2),
+          MECHSIM_F64(CvtState, sigma_3),
+          MECHSIM_F64(CvtState, sigma_4),
+          MECHSIM_F64(CvtState, belt_loss),
+          MECHSIM_F64(CvtState, bearing_loss),
+          MECHSIM_F64(CvtState, flags),
+          MECHSIM_FLAG(CvtState, gross_slip),
+          MECHSIM_FLAG(CvtState, torque_reversal),
+          MECHSIM_FLAG(CvtState, outside_model)}));
 #define MECHSIM_LEVELS(X) X(1) X(2) X(3) X(4) X(5) X(6) X(7) X(8) X(9) X(10) X(11) X(12) X(13) X(14) X(15) X(16)
 #define MECHSIM_PREDICTED(j) MECHSIM_F64(CouplingPrediction, predicted_angle_##j),
 #define MECHSIM_SENSITIVITY(j) MECHSIM_F64(CouplingPrediction, sensitivity_##j),

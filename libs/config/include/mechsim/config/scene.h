@@ -79,6 +79,9 @@ struct ReportSpec {
   bool at_wrap_turn = false;    // wrap an angle into [0, 360) deg
   std::string target;           // step_response: the final value as written ("0.1 mm"); "" = the reference's last value
   double band = 0.02;           // step_response: settling band, fraction of the step
+  // energy_balance: power signals [W] integrated over the run (supplied, dissipated) and
+  // energy signals [J] whose change counts as stored; `signal` is the first supplied one.
+  std::vector<SignalRef> supplied, dissipated, stored;
 };
 
 // Real-time mode (`mode: realtime`): pacing and what to do when a node falls behind.

@@ -58,5 +58,6 @@ NodeType follower_node_type();
 NodeType servo_amplifier_node_type();
 NodeType tachometer_node_type();
 NodeType slide_node_type();
+NodeType cvt_node_type();
 
 }  // namespace mechsim::cosim

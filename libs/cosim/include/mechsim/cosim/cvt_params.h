@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "mechsim/config/config_node.h"
+#include "mechsim/models/cvt/cvt_block.h"
 #include "mechsim/models/cvt/cvt_model.h"
 
 namespace mechsim::cosim {
@@ -24,5 +25,9 @@ struct CvtConfig {
 // `other_keys`: keys of the same map that belong to the caller (e.g. a node's drive and
 // dynamics), accepted and left alone.
 CvtConfig parse_cvt_config(const config::ConfigNode& params, const std::vector<std::string>& other_keys = {});
+
+// The `cvt` participant's params (node_types/cvt.cpp): the belt keys above plus the time run's
+// drive, inertias, initial state, ratio actuator and shape table (docs/press-line.md).
+models::cvt::CvtBlockParams parse_cvt_block_params(const config::ConfigNode& params);
 
 }  // namespace mechsim::cosim

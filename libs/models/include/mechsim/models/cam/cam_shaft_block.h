@@ -30,6 +30,11 @@ struct CamShaftParams {
   ShaftDrive drive{};                   // default: constant speed
   double inertia_kgm2 = 0.0;            // I: shaft + flywheel (torque drives, > 0)
   std::optional<double> initial_speed{};  // rad/s at t = 0 (torque drives); default: speed
+  // > 0: the shaft is driven by another shaft through a rigid, lossless gear of this ratio
+  // (ω_drive / ω_cam). The driving side integrates the speed: the cam shaft reads the
+  // driving shaft's speed and acceleration and hands back its load torque and its inertia
+  // (shaft, flywheel and the follower's reflected inertia) reflected through the gear.
+  double gear_ratio = 0.0;
 };
 
 // Inputs: load_torque (N m, default 0: the torque the follower demands except its
@@ -39,6 +44,14 @@ struct CamShaftParams {
 // for a torque source), drive_power (= shaft_torque · speed), acceleration (ω̇; 0 at
 // constant speed). Feedthrough: at constant speed shaft_torque and drive_power from
 // load_torque; with a torque drive only acceleration, from both inputs.
+//
+// Driven through a gear (gear_ratio g > 0, docs/press-line.md): one state θ with
+// θ' = ω_drive/g. Extra inputs drive_speed and drive_acceleration (the driving shaft's);
+// extra outputs drive_load_torque = M_rest/g and drive_load_inertia = (I + J_r)/g², which
+// the driving side carries in its own equation (as the shaft carries J_r of the follower),
+// so no algebraic loop closes across the gear. shaft_torque is then the torque the gear
+// delivers, M_rest + (I + J_r) ω̇. Every mode also outputs kinetic_energy = ½ I ω² (the
+// shaft and flywheel; 0 for a speed source, which has no inertia).
 class CamShaftBlock : public Block {
  public:
   explicit CamShaftBlock(CamShaftParams params);
@@ -51,6 +64,7 @@ class CamShaftBlock : public Block {
 
   const CamShaftParams& params() const { return params_; }
   bool has_dynamic_drive() const { return params_.drive.is_torque_source(); }
+  bool is_driven() const { return params_.gear_ratio > 0.0; }
   // ω̇ of a torque drive at speed ω under the given load (0 for a speed source).
   double angular_acceleration(double speed, double load_torque_rest, double reflected_inertia) const;
 

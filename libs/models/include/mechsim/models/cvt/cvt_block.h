@@ -1,38 +1,41 @@
-// Time-domain block of the push-belt CVT with its input drive (spec cvt.md §8.4), ready for a
-// `cvt` node type (not wired yet). The belt is the stationary L1/L0 map evaluated at every
-// call; the dynamics around it are assumptions of ours:
+// Time-domain block of the push-belt CVT with its input drive (spec cvt.md §8.4), the block of
+// the `cvt` node type (docs/cvt.md, docs/press-line.md). The belt is the stationary L1/L0 map
+// evaluated at every call; the dynamics around it are assumptions of ours:
 //
 //   motor line on the input shaft        T_M = T_stall (1 − ω_C/ω_0)
 //   input shaft (motor + C)              J_C dω_C/dt = T_M − T_1,   T_1 = T_C + T_Lprim
-//   disc shaft, ω_D = i(s) ω_C            J_D dω_D/dt = T_2 − T_P,   T_2 = η_PB T_C/i − T_Lsec
-//   ratio actuator (first order)         ds/dt = (s_cmd − s)/τ_s
+//   disc shaft, ω_D = i(s) ω_C            (J_D + J_L) dω_D/dt = T_2 − T_P,   T_2 = η_PB T_C/i − T_Lsec
+//   ratio actuator (first order)         ds/dt = (s_cmd(t) − s)/τ_s
 //
-// Eliminating T_C (ω̇_D = i ω̇_C + i'(s) ṡ ω_C, the term a changing ratio adds):
-//   (J_C + i² J_D/η_PB) ω̇_C = T_M − T_Lprim − i (T_Lsec + T_P)/η_PB − J_D i i' ṡ ω_C/η_PB
-// η_PB and the bearing losses depend on T_C: a short fixed point from the last T_C. Where the
-// belt state is outside the model (gross slip, reversal) the block carries on with a lossless
-// belt and says so in `flags`; it never stops the run.
+// J_L (input load_inertia) is an inertia the load hands over to be carried on the disc shaft
+// (a cam shaft driven through a gear: its shaft, flywheel and follower, reflected); it may vary
+// in time: its ½ J̇_L ω_D² belongs to the load's torque T_P, as with the follower's m S'².
+// Eliminating T_C (ω̇_D = i ω̇_C + i'(s) ṡ ω_C, the term a changing ratio adds), J' = J_D + J_L:
+//   (J_C + i² J'/η_PB) ω̇_C = T_M − T_Lprim − i (T_Lsec + T_P)/η_PB − J' i i' ṡ ω_C/η_PB
+// η_PB and the bearing losses depend on T_C: a short fixed point from the quasi-static guess.
+// Where the belt state is outside the model (gross slip, reversal, a bad input) the block
+// carries on with a lossless belt and says so in `flags`; it never stops the run.
+//
+// s_cmd is the ratio_command input, or, when the params give a schedule, the schedule's
+// piecewise-linear value at t (a step is two points at the same time).
 //
 // Ports                   unit    feedthrough
-//   in  ratio_command      m       default s0
-//   in  load_torque        N m     default 0      T_P on the disc shaft (e.g. the cam shaft's reaction)
-//   out input_speed        rad/s   —              ω_C
-//   out output_speed       rad/s   —              ω_D
-//   out ratio              -       —              i_TH
-//   out ratio_setting      m       —              s
-//   out motor_torque       N m     —              T_M
-//   out belt_torque        N m     load_torque    T_C
-//   out input_torque       N m     load_torque    T_1
-//   out output_torque      N m     load_torque    T_2
-//   out eta_PB, eta_SYS    -       load_torque
-//   out clamping_force     N       load_torque
-//   out slip_margin        -       load_torque    v_KD
-//   out sigma_1..sigma_4   Pa      load_torque
-//   out belt_loss          W       load_torque
-//   out bearing_loss       W       load_torque    T_Lprim ω_C + T_Lsec ω_D
-//   out flags              -       load_torque    CvtFlag bit set, as a number
+//   in  ratio_command      m       default s0 (not declared with a schedule)
+//   in  load_torque        N m     default 0      T_P on the disc shaft
+//   in  load_inertia       kg m²   default 0      J_L carried on the disc shaft
+//   out input_speed, output_speed, ratio, ratio_setting, ratio_command, motor_torque,
+//       motor_power (T_M ω_C), kinetic_energy (½J_C ω_C² + ½J_D ω_D², without J_L)
+//   out output_acceleration, belt_torque T_C, input_torque T_1, output_torque T_2, eta_PB,
+//       eta_SYS, clamping_force, slip_margin (v_KD), sigma_1..sigma_4, belt_loss,
+//       bearing_loss [W], flags, gross_slip, torque_reversal, outside_model (0/1):
+//       feedthrough from load_torque and load_inertia
+// belt_loss and bearing_loss are the powers the equations above dissipate (lossless belt:
+// 0), so that motor power = load power + losses + d/dt kinetic energy holds exactly.
 // States: input_speed [rad/s], ratio_setting [m].
 #pragma once
+
+#include <utility>
+#include <vector>
 
 #include "mechsim/models/block.h"
 #include "mechsim/models/cvt/cvt_model.h"
@@ -54,6 +57,16 @@ struct CvtBlockParams {
   double omega0 = 0.0;               // initial input speed [rad/s]
   double s_table_min = 5e-3, s_table_max = 55e-3;  // belt shapes tabulated at construction
   int s_table_points = 101;
+  // Setpoint schedule of the ratio actuator: (t [s], s [m]) points, times non-decreasing;
+  // held before the first and after the last point. Empty: the ratio_command input.
+  std::vector<std::pair<double, double>> ratio_schedule;
+  // Belt map tabulated at construction (safety-factor clamping only): the chosen level is
+  // evaluated on an s × T_C × ω_C grid over the shape table and the validated range, and
+  // η_PB, F_K/(T/r), v_KD and σ1..σ4 are interpolated (trilinear, clamped at the edges);
+  // the bearing losses stay closed form. A step then costs no map evaluation: an L1
+  // evaluation costs ~0.7 ms, far too much for every right-hand side of a time run.
+  bool belt_table = false;
+  int table_s_points = 11, table_torque_points = 6, table_speed_points = 5;
 };
 
 class CvtBlock final : public Block {
@@ -71,19 +84,40 @@ class CvtBlock final : public Block {
   struct Solution {
     CvtResult belt;
     double T_M = 0.0, omega_dot = 0.0, s_dot = 0.0, di_ds = 0.0;
+    double s_cmd = 0.0;       // the actuator's setpoint [m]
+    double T_C = 0.0;         // belt torque of the equations [N m]
+    double eta = 1.0;         // η_PB used (1 outside the model)
+    double T_L_prim = 0.0, T_L_sec = 0.0;  // bearing torques used [N m]
+    double omega_D_dot = 0.0;
+    unsigned flags = 0;       // the model's flags and the block's kBadInput
   };
-  // The belt state and the accelerations at (x, u).
-  Solution solve(std::span<const double> x, std::span<const double> u) const;
+  // The belt state and the accelerations at (t, x, u).
+  Solution solve(double t, std::span<const double> x, std::span<const double> u) const;
+  Solution solve(std::span<const double> x, std::span<const double> u) const { return solve(0.0, x, u); }
+  // The actuator setpoint at t (schedule or input).
+  double ratio_command(double t, std::span<const double> u) const;
+  // The belt at (s, ω_C, T_C): the model, or the tabulated map when belt_table is set.
+  // Throws CvtInputError on bad input (direct evaluation).
+  CvtResult belt(double s, double omega_C, double T_C) const;
 
  private:
   CvtBlockParams p_;
   mutable CvtModel model_;  // the shape table is built in the constructor: no search at run time
+  struct Table {
+    int ns = 0, nt = 0, nw = 0;
+    double s0 = 0, ds = 0, t0 = 0, dt = 0, w0 = 0, dw = 0;
+    static constexpr int kFields = 7;  // η_PB, F_K/(T/r), v_KD, σ1..σ4
+    std::vector<double> v;             // [((is·nt + it)·nw + iw)·kFields + f]
+  } table_;
+  void build_table();
+  CvtResult table_belt(double s, double omega_C, double T_C) const;
   struct {
-    int ratio_command = -1, load_torque = -1;
+    int ratio_command = -1, load_torque = -1, load_inertia = -1;
   } in_;
   struct {
     int input_speed, output_speed, ratio, ratio_setting, motor_torque, belt_torque, input_torque, output_torque,
-        eta_PB, eta_SYS, clamping_force, slip_margin, sigma1, sigma2, sigma3, sigma4, belt_loss, bearing_loss, flags;
+        eta_PB, eta_SYS, clamping_force, slip_margin, sigma1, sigma2, sigma3, sigma4, belt_loss, bearing_loss, flags,
+        output_acceleration, ratio_command, motor_power, kinetic_energy, gross_slip, torque_reversal, outside_model;
   } out_{};
   struct {
     int input_speed, ratio_setting;

@@ -62,12 +62,15 @@ enum CvtFlag : unsigned {
                                      // power from the disc side, outside the model
   kZeroSpeed = 1u << 6,              // ω_C = 0: no slip power, η_PB := 1
   kNoSolution = 1u << 7,             // the §3.8 search found no push force (F_P0 > 1000·T/r)
+  kBadInput = 1u << 8,               // set by CvtBlock: an input the model refuses (NaN, s or the
+                                     // ratio command outside the tabulated range); the block
+                                     // carries on with a lossless belt at the clamped s
 };
 // "gross_slip,link_shift" etc., empty for none.
 std::string flag_names(unsigned flags);
 // True when the belt numbers are the model's (no gross slip, reversal, no solution).
 inline bool belt_state_modelled(unsigned flags) {
-  return (flags & (kGrossSlip | kTorqueReversal | kNoSolution)) == 0;
+  return (flags & (kGrossSlip | kTorqueReversal | kNoSolution | kBadInput)) == 0;
 }
 
 struct BearingLoads {

@@ -14,7 +14,9 @@ namespace mechsim::models::follower {
 // m S'² ω̇) and reflected_inertia (m S'²), and lift_off_count (always 0: a rigid follower
 // cannot fly; N < 0 only says that a real one would); each with feedthrough from the
 // inputs it uses. drive_torque_rest and reflected_inertia do not depend on ω̇, which is
-// what keeps the loop with a dynamic cam shaft free of direct feedthrough.
+// what keeps the loop with a dynamic cam shaft free of direct feedthrough. Energy ports:
+// load_power (F_func v: the press work rate), kinetic_energy (½ m v²) and spring_energy
+// (F0 S + ½ k S², zero at S = 0).
 class FollowerBlock : public Block {
  public:
   explicit FollowerBlock(FollowerParams params);

@@ -16,6 +16,13 @@ struct FunctionalLoad {
   double start_rad;  // in [0, 2π)
   double end_rad;    // in (start, 2π]
   double force_n;    // > 0 compressive (the cam must push), < 0 tensile
+  // A ramp: the force runs linearly in the cam angle from force_n at start to end_force_n
+  // at end (a forming force that builds up as the die closes). Off: constant force_n.
+  bool ramp = false;
+  double end_force_n = 0.0;
+  double at(double theta_rad) const {
+    return ramp ? force_n + (end_force_n - force_n) * (theta_rad - start_rad) / (end_rad - start_rad) : force_n;
+  }
 };
 
 // Return spring: F = preload + stiffness · S.
