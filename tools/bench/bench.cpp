@@ -263,6 +263,7 @@ struct RunResult {
   double rms_rel_bound = kNaN;  // the reference's own error where the value is refused
   std::string worst_signal;
   std::string run_dir;
+  bool completed = false;  // every node ran to the end (whatever the error)
 };
 
 class Bench {
@@ -458,6 +459,7 @@ RunResult Bench::run_inproc_point(const RunSpec& r, const std::string& run_dir) 
     return res;
   }
   res.status = "ok";
+  res.completed = true;
   try {
     compare(*scene, ref, participants_, [&](const std::string& p) { return run_dir + "/" + p + ".outputs.bin"; }, res);
   } catch (const std::exception& e) {
@@ -490,7 +492,11 @@ bool same_bytes(const std::string& a, const std::string& b) {
 // The same run as real node processes through `mechsim launch`, its error as the launcher
 // reports it, and whether every node's output log equals the in-process run's byte for byte.
 json Bench::dds_check(const RunSpec& r, const RunResult& inproc) {
-  const std::string exe = opt_.mechsim_exe.empty() ? fs::read_symlink("/proc/self/exe").string() : opt_.mechsim_exe;
+  std::string exe = opt_.mechsim_exe.empty() ? fs::read_symlink("/proc/self/exe").string() : opt_.mechsim_exe;
+  // A rebuilt executable while the bench runs: the link names the old, deleted file.
+  const std::string deleted = " (deleted)";
+  if (exe.size() > deleted.size() && exe.compare(exe.size() - deleted.size(), deleted.size(), deleted) == 0)
+    exe.resize(exe.size() - deleted.size());
   const std::string dir = opt_.work_dir + "/dds-" + std::to_string(++run_counter_);
   fs::create_directories(dir);
   std::string cmd = shell_quote(exe) + " launch " + shell_quote(variant_files_[r.variant]);
@@ -518,7 +524,7 @@ json Bench::dds_check(const RunSpec& r, const RunResult& inproc) {
   // Equal outcomes: both ran through, or both stopped (the launcher reports "failed" for a
   // diverged node); and the node logs equal byte for byte up to where they stopped.
   out["inproc_status"] = inproc.status;
-  const bool dds_ok = out["status"] == "ok", inproc_ok = inproc.status == "ok";
+  const bool dds_ok = out["status"] == "ok", inproc_ok = inproc.completed;
   bool identical = !run_dir.empty() && dds_ok == inproc_ok;
   json nodes = json::object();
   for (const auto& p : participants_) {
@@ -553,6 +559,7 @@ json Bench::row_json(const RunSpec& r, const RunResult& res) const {
   return {{"scheme", v.name},
           {"family", v.family},
           {"zero_order_hold_jacobi", v.zero_order_hold_jacobi},
+          {"shipped", v.shipped},
           {"step_s", r.h},
           {"solver", r.solver},
           {"rtol", r.rtol},
@@ -581,16 +588,23 @@ void Bench::plots(const std::vector<RunSpec>& specs, const std::vector<RunResult
   // Curves: (scheme, solver[, rtol]) -> points sorted by H.
   auto curves = [&](const std::string& sweep, bool by_h) {
     std::map<std::string, std::vector<std::pair<double, double>>> c;
+    std::map<std::string, std::map<double, double>> yv;
     for (std::size_t i = 0; i < specs.size(); ++i) {
       if (specs[i].sweep != sweep && !(sweep == "tolerance" && specs[i].solver == "cvode_bdf")) continue;
       const auto& res = results[i];
       if (res.status != "ok" || !std::isfinite(res.rms_rel)) continue;
       std::string name = variants_[specs[i].variant].name + " " + specs[i].solver;
       if (sweep == "tolerance") name = variants_[specs[i].variant].name + " rtol " + num(specs[i].rtol, "%.0e");
-      c[name].push_back({by_h ? specs[i].h : res.wall_time_s, res.rms_rel});
+      c[name].push_back({specs[i].h, res.wall_time_s});
+      yv[name][specs[i].h] = res.rms_rel;
     }
-    for (auto& [k, pts] : c) std::sort(pts.begin(), pts.end());
-    return c;
+    // Along a curve the points follow H (sorted), whatever the wall time does.
+    std::map<std::string, std::vector<std::pair<double, double>>> out;
+    for (auto& [k, pts] : c) {
+      std::sort(pts.begin(), pts.end());
+      for (const auto& [h, wall] : pts) out[k].push_back({by_h ? h : wall, yv[k][h]});
+    }
+    return out;
   };
   auto panel_of = [&](const std::map<std::string, std::vector<std::pair<double, double>>>& c, const std::string& title,
                       const std::string& xlabel) {
@@ -613,9 +627,21 @@ void Bench::plots(const std::vector<RunSpec>& specs, const std::vector<RunResult
   };
   plot::Figure wp;
   wp.title = scene_name_ + ": work-precision (in-process runs; points along a curve are macro steps H)";
-  wp.height_px_per_panel = 520;
-  wp.panels.push_back(panel_of(curves("solver", false), "node solver sweep (rtol " + num(opt_.rtol, "%.0e") + ")",
-                               "wall time [s]"));
+  wp.height_px_per_panel = 420;
+  // One panel per node solver (a curve per scheme), then the tolerance sweep.
+  const auto all = curves("solver", false);
+  std::vector<std::string> solver_names;
+  for (const auto& sp : specs)
+    if (sp.sweep == "solver" && std::find(solver_names.begin(), solver_names.end(), sp.solver) == solver_names.end())
+      solver_names.push_back(sp.solver);
+  for (const auto& solver : solver_names) {
+    std::map<std::string, std::vector<std::pair<double, double>>> sub;
+    const std::string suffix = " " + solver;
+    for (const auto& [name, pts] : all)
+      if (name.size() > suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0)
+        sub[name.substr(0, name.size() - suffix.size())] = pts;
+    wp.panels.push_back(panel_of(sub, solver + " in every node (rtol " + num(opt_.rtol, "%.0e") + ")", "wall time [s]"));
+  }
   auto tol = curves("tolerance", false);
   if (!tol.empty()) wp.panels.push_back(panel_of(tol, "tolerance sweep (cvode_bdf)", "wall time [s]"));
   std::string why;
@@ -697,6 +723,22 @@ int Bench::run() {
     }
     variants_.push_back(v);
     variant_files_.push_back(file);
+  }
+  // The shipped connections are often one of the variants (nc_slide_loop_1ms ships
+  // interface_jacobian/10): run them once, under the variant's name, marked shipped.
+  if (!variants_.empty() && variants_[0].shipped) {
+    YAML::Emitter shipped_conns;
+    shipped_conns << variants_[0].document["connections"];
+    for (std::size_t i = 1; i < variants_.size(); ++i) {
+      YAML::Emitter e;
+      e << variants_[i].document["connections"];
+      if (std::string(e.c_str()) == shipped_conns.c_str()) {
+        variants_[i].shipped = true;
+        variants_.erase(variants_.begin());
+        variant_files_.erase(variant_files_.begin());
+        break;
+      }
+    }
   }
   if (variants_.empty()) {
     std::fprintf(stderr, "mechsim bench: no coupling scheme to sweep%s\n",
