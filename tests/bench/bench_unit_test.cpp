@@ -47,12 +47,18 @@ connections:
   std::vector<std::string> names;
   for (const auto& x : v) names.push_back(x.name);
   EXPECT_EQ(names, (std::vector<std::string>{"shipped", "jacobi/hold", "jacobi/linear", "jacobi/quadratic",
-                                             "gauss_seidel/hold", "gauss_seidel/linear", "gauss_seidel/quadratic"}));
+                                             "gauss_seidel/hold", "gauss_seidel/linear", "gauss_seidel/quadratic",
+                                             "gauss_seidel_reversed/hold", "gauss_seidel_reversed/linear",
+                                             "gauss_seidel_reversed/quadratic"}));
   EXPECT_TRUE(v[1].zero_order_hold_jacobi);
   EXPECT_EQ(v[1].document["connections"][0]["order"].as<std::string>(), "jacobi");
   EXPECT_EQ(v[2].document["connections"][1]["reconstruction"].as<std::string>(), "linear");
   EXPECT_EQ(v[5].document["connections"][0]["order"].as<std::string>(), "gauss_seidel");
   EXPECT_EQ(v[5].document["connections"][1]["reconstruction"].as<std::string>(), "linear");
+  // The reversed ordering: the follower first, the cam's motion extrapolated.
+  EXPECT_EQ(v[8].document["connections"][1]["order"].as<std::string>(), "gauss_seidel");
+  EXPECT_EQ(v[8].document["connections"][0]["order"].as<std::string>(), "jacobi");
+  EXPECT_EQ(v[8].document["connections"][0]["reconstruction"].as<std::string>(), "linear");
   // The input document is not changed.
   EXPECT_FALSE(doc["connections"][0]["reconstruction"]);
 }

@@ -188,6 +188,30 @@ std::vector<SchemeVariant> scheme_variants(const YAML::Node& scene_document) {
     v.document = doc;
     out.push_back(v);
   }
+  for (const char* rec : {"hold", "linear", "quadratic"}) {
+    // The other ordering: the edges that were Jacobi go first (Gauss-Seidel) and the
+    // Gauss-Seidel ones become Jacobi with `rec` (without any Gauss-Seidel edge: the last
+    // connection first). The validator refuses an ordering with a Gauss-Seidel cycle.
+    YAML::Node doc = clone();
+    std::size_t i = 0;
+    const std::size_t n = doc["connections"].size();
+    for (auto c : doc["connections"]) {
+      const bool gs = has_gs ? s(c, "order", "jacobi") != "gauss_seidel" : i + 1 == n;
+      ++i;
+      if (gs) {
+        c["order"] = "gauss_seidel";
+        c.remove("reconstruction");
+      } else {
+        c["order"] = "jacobi";
+        c["reconstruction"] = rec;
+      }
+    }
+    SchemeVariant v;
+    v.name = std::string("gauss_seidel_reversed/") + rec;
+    v.family = "gauss_seidel_reversed";
+    v.document = doc;
+    out.push_back(v);
+  }
   return out;
 }
 
