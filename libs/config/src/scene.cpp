@@ -167,12 +167,13 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
     if (!conns->is_sequence()) conns->fail("expected a list of connections");
     for (std::size_t i = 0; i < conns->size(); ++i) {
       ConfigNode c = conns->at(i);
-      c.allow_only({"from", "to", "order", "reconstruction", "coupling"});
+      c.allow_only({"from", "to", "order", "reconstruction", "coupling", "initial"});
       ConnectionSpec spec;
       spec.from = c.string("from");
       spec.to = c.string("to");
       spec.key_path = c.path();
       spec.coupling = c.optional_child("coupling");
+      spec.initial = c.optional_child("initial");
       if (!scene.find_participant(spec.from)) c.child("from").fail("expected the name of a participant of this scene, got '" + spec.from + "'");
       if (!scene.find_participant(spec.to)) c.child("to").fail("expected the name of a participant of this scene, got '" + spec.to + "'");
       if (spec.from == spec.to) c.child("to").fail("expected another participant than 'from'");

@@ -24,6 +24,7 @@ NodeStepper::NodeStepper(PlannedNode& node, const config::TimeSpec& time)
     // A Jacobi edge's initial values are the defaults of the inputs it feeds.
     std::vector<double> initial(edge.type->fields.size(), 0.0);
     for (const auto& [field, input] : edge.field_to_input) initial[field] = block.inputs()[input].default_value;
+    for (const auto& [field, value] : edge.initial_values) initial[field] = value;  // the scene's `initial:`
     channel.initial_values(initial);
     channels_.push_back(std::move(channel));
   }

@@ -1,5 +1,6 @@
 #include "mechsim/cosim/scene_plan.h"
 
+#include "mechsim/config/units.h"
 #include "mechsim/cosim/nc_params.h"
 
 #include <functional>
@@ -140,6 +141,26 @@ ScenePlan ScenePlan::build(const config::Scene& scene) {
         for (const auto& [of, oi] : other.field_to_input)
           if (oi == i) refuse(scene, c.key_path, "expected each input of '" + c.to + "' fed once: input '" + input + "' is already fed by '" + other.from + "'");
       edge.field_to_input.emplace_back(f, i);
+    }
+    if (c.initial) {
+      // `initial: {field: value}` — the partner's fields before its first sample (Jacobi only).
+      const config::ConfigNode& ini = *c.initial;
+      if (!ini.is_map()) ini.fail("expected a map {topic field: value}, e.g. {drive_load_inertia: 2.5 kg m^2}");
+      if (c.order != config::EdgeOrder::jacobi)
+        ini.fail("expected no initial values on a gauss_seidel edge (it waits for the partner's step-0 sample)");
+      for (const std::string& key : ini.keys()) {
+        const int f = edge.type->field_index(key);
+        bool fed = false;
+        for (const auto& [ef, ei] : edge.field_to_input) fed = fed || ef == f;
+        if (!fed) ini.child(key).fail("expected a field of " + edge.type->idl_name + " that this connection reads");
+        double v = 0.0;
+        try {
+          v = config::parse_quantity(ini.child(key).as_string()).value_si;
+        } catch (const std::exception& e) {
+          ini.child(key).fail(std::string("expected a value (SI, or with its unit): ") + e.what());
+        }
+        edge.initial_values.emplace_back(f, v);
+      }
     }
     if (edge.field_to_input.empty())
       refuse(scene, c.key_path, "expected a connection that feeds an input of '" + c.to + "': as configured, it reads nothing from '" + c.from + "'");

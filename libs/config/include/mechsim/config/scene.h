@@ -54,6 +54,9 @@ struct ConnectionSpec {
   // The element at the cut (e.g. the motor-spindle spring-damper), when the connection
   // crosses one: both participants' node types read it (docs/scenes.md).
   std::optional<ConfigNode> coupling;
+  // Jacobi only: values of the partner's topic fields before its first sample arrived,
+  // {field: value} (the node's initial outputs use them; default: the inputs' defaults).
+  std::optional<ConfigNode> initial;
   std::string key_path;  // "connections[1]"
 };
 

@@ -23,6 +23,8 @@ struct InboundEdge {
   std::vector<std::pair<int, int>> field_to_input;  // (topic field index, block input index)
   config::EdgeOrder order = config::EdgeOrder::jacobi;
   config::Reconstruction reconstruction = config::Reconstruction::hold;
+  std::vector<std::pair<int, double>> initial_values;  // (topic field index, SI value): a Jacobi
+                                                       // edge's values before the first sample
 };
 
 // This node's side of a cut joined by the interface-Jacobian scheme (a connection with
