@@ -31,6 +31,7 @@
 #include "run_report.h"
 #include "signal_compare.h"
 #include "solver_health.h"
+#include "stable_step.h"
 #include "csv.h"
 #include "json_io.h"
 #include "plot.h"
@@ -83,6 +84,7 @@ class Run {
   RunOutcome run_nodes();
   void fail(RunOutcome& out, const std::string& node, const std::string& reason);
   std::string divergence_advice(const std::string& node) const;
+  std::string divergence_advice_text(const std::string& node) const;
   void print_progress(double since_start, bool final_line);
   json summarise(const RunOutcome& out);
 
@@ -101,6 +103,7 @@ class Run {
   bool tty_ = false;
   std::map<std::string, std::string> replay_tables_;  // node -> table its process replays
   std::unique_ptr<RunRecording> recording_;
+  mutable std::optional<std::string> divergence_advice_;  // computed once (it runs a search)
 };
 
 // The last line of a node's log that says "error" (for a node that died before its status
@@ -117,6 +120,12 @@ std::string last_error_line(const std::string& log_path) {
 // loop, so the node that noticed it first need not sit at the cut), else the diverged
 // node's own connections, and suggests a smaller macro step.
 std::string Run::divergence_advice(const std::string& node) const {
+  if (divergence_advice_) return *divergence_advice_;
+  divergence_advice_ = divergence_advice_text(node);
+  return *divergence_advice_;
+}
+
+std::string Run::divergence_advice_text(const std::string& node) const {
   std::string cuts;
   for (const auto& c : scene_.connections)
     if (c.coupling)
@@ -127,6 +136,22 @@ std::string Run::divergence_advice(const std::string& node) const {
   char step[64], now[64];
   std::snprintf(step, sizeof step, "%g us", scene_.time.step / 4 * 1e6);
   std::snprintf(now, sizeof now, "%g us", scene_.time.step * 1e6);
+  // The stable step, found by in-process runs of the resolved scene (stable_step.h),
+  // halving the macro step; any sampled participant follows it.
+  std::optional<double> stable;
+  try {
+    std::fprintf(stderr, "mechsim: the run diverged; looking for a stable macro step with in-process runs...\n");
+    stable = find_stable_step_below(run_dir_ + "/scene.yaml", {}, scene_.time.step);
+  } catch (const std::exception&) {
+    // No search possible (e.g. a replayed node): the generic advice below.
+  }
+  if (stable) {
+    char found[64];
+    std::snprintf(found, sizeof found, "%.4g us", *stable * 1e6);
+    return ". The coupled run is unstable at a macro step of " + std::string(now) + " across " + cuts +
+           "; in-process runs of this scene are stable at " + found + ": try --step '" + found +
+           "' (mechsim bench SCENE --stability bisects the limit per scheme; docs/accuracy.md)";
+  }
   return ". The coupled run is unstable at a macro step of " + std::string(now) + " across " + cuts + "; try a smaller step, e.g. --step '" + step +
          "' (docs/nc-loop.md lists the measured limits)";
 }
