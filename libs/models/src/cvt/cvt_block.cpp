@@ -206,7 +206,11 @@ CvtResult CvtBlock::belt(double s, double omega_C, double T_C) const {
 CvtBlock::Solution CvtBlock::solve(double t, std::span<const double> x, std::span<const double> u) const {
   Solution sol;
   unsigned bad = 0;
-  const double w = std::max(x[st_.input_speed], 0.0);  // the motor line does not reverse the shaft
+  double w = std::max(x[st_.input_speed], 0.0);  // the motor line does not reverse the shaft
+  if (!std::isfinite(w)) {
+    bad |= kBadInput;
+    w = 0.0;
+  }
   double s = x[st_.ratio_setting];
   if (!(s >= p_.s_table_min && s <= p_.s_table_max)) {
     bad |= kBadInput;
@@ -275,24 +279,31 @@ void CvtBlock::derivatives(double t, std::span<const double> x, std::span<const 
 void CvtBlock::calc_outputs(double t, std::span<const double> x, std::span<const double> u, std::span<double> y) const {
   const Solution sol = solve(t, x, u);
   const CvtResult& r = sol.belt;
-  const double w = std::max(x[st_.input_speed], 0.0);
+  const double w = r.omega_C;  // the speed solve() used (a NaN state: 0, flagged)
   const double i = r.ratio, wD = i * w;
-  y[out_.input_speed] = x[st_.input_speed];
+  y[out_.input_speed] = std::isfinite(x[st_.input_speed]) ? x[st_.input_speed] : w;
   y[out_.output_speed] = wD;
   y[out_.ratio] = i;
-  y[out_.ratio_setting] = x[st_.ratio_setting];
+  y[out_.ratio_setting] = std::isfinite(x[st_.ratio_setting]) ? x[st_.ratio_setting] : r.s;
   y[out_.motor_torque] = sol.T_M;
   y[out_.belt_torque] = sol.T_C;
   y[out_.input_torque] = sol.T_C + sol.T_L_prim;
   y[out_.output_torque] = sol.eta * sol.T_C / i - sol.T_L_sec;
-  y[out_.eta_PB] = r.eta_PB;
-  y[out_.eta_SYS] = r.eta_SYS;
-  y[out_.clamping_force] = r.F_K;
-  y[out_.slip_margin] = r.v_KD;
-  y[out_.sigma1] = r.sigma[0];
-  y[out_.sigma2] = r.sigma[1];
-  y[out_.sigma3] = r.sigma[2];
-  y[out_.sigma4] = r.sigma[3];
+  // Every output is finite, also outside the model (a NaN on the topic reads as a diverged
+  // run): there η_PB is the lossless belt the equations run, η_SYS the equations' power
+  // ratio (0 when the input power is not positive), and a belt number the model does not
+  // give (clamping force, slip margin, stresses; the stresses at L0) is 0. The flags say which.
+  const auto fin = [](double v) { return std::isfinite(v) ? v : 0.0; };
+  const bool modelled = belt_state_modelled(sol.flags) && std::isfinite(r.eta_SYS);
+  const double P_in = (sol.T_C + sol.T_L_prim) * w;
+  y[out_.eta_PB] = sol.eta;
+  y[out_.eta_SYS] = modelled ? r.eta_SYS : (P_in > 0 ? (sol.eta * sol.T_C / i - sol.T_L_sec) * wD / P_in : 0.0);
+  y[out_.clamping_force] = fin(r.F_K);
+  y[out_.slip_margin] = fin(r.v_KD);
+  y[out_.sigma1] = fin(r.sigma[0]);
+  y[out_.sigma2] = fin(r.sigma[1]);
+  y[out_.sigma3] = fin(r.sigma[2]);
+  y[out_.sigma4] = fin(r.sigma[3]);
   // The powers the equations dissipate: with T_D = η T_C/i the belt loses (1 − η) T_C ω_C.
   y[out_.belt_loss] = (1.0 - sol.eta) * sol.T_C * w;
   y[out_.bearing_loss] = sol.T_L_prim * w + sol.T_L_sec * wD;

@@ -11,7 +11,8 @@ namespace {
 enum Input { in_angle, in_speed, in_lift, in_lift_d1, in_lift_d2, in_pressure_angle, in_acceleration };
 enum Output { out_position, out_velocity, out_acceleration, out_contact_force, out_contact,
               out_drive_torque, out_spring_force, out_load_force, out_inertia_force,
-              out_drive_torque_rest, out_reflected_inertia, out_lift_off_count, out_deflection };
+              out_drive_torque_rest, out_reflected_inertia, out_lift_off_count, out_deflection,
+              out_load_power, out_kinetic_energy, out_spring_energy };
 enum State { x_deflection, x_velocity };
 enum Event { ev_lift_off, ev_landing };
 
@@ -68,6 +69,9 @@ FlexibleFollowerBlock::FlexibleFollowerBlock(FlexibleFollowerParams params)
   declare_output("reflected_inertia", "kg*m^2");
   declare_output("lift_off_count", "1");
   declare_output("deflection", "m");  // the state itself
+  declare_output("load_power", "W", {angle});
+  declare_output("kinetic_energy", "J");
+  declare_output("spring_energy", "J", {lift});
   declare_state("deflection", "m");
   declare_state("velocity", "m/s");
 }
@@ -121,6 +125,13 @@ void FlexibleFollowerBlock::calc_outputs(double, std::span<const double> x, std:
   y[out_reflected_inertia] = 0.0;
   y[out_lift_off_count] = static_cast<double>(mode_.lift_offs);
   y[out_deflection] = x[x_deflection];
+  // Energy ports as the rigid follower's; the spring energy includes the compressed contact
+  // stiffness. The dampers' losses (c_f, c) are not among them.
+  const double yy = y[out_position], v = x[x_velocity];
+  y[out_load_power] = y[out_load_force] * v;
+  y[out_kinetic_energy] = 0.5 * f.mass * v * v;
+  y[out_spring_energy] = f.spring.preload_n * yy + 0.5 * f.spring.stiffness_n_per_m * yy * yy +
+                         (x[x_deflection] > 0 ? 0.5 * params_.contact.stiffness_n_per_m * x[x_deflection] * x[x_deflection] : 0.0);
 }
 
 Crossing FlexibleFollowerBlock::event_direction(int index) const {

@@ -122,6 +122,7 @@ TEST(CvtBlockInputs, BadInputsAreFlaggedNotThrown) {
       {"negative load inertia", x, {30e-3, 300.0, -1.0}},
       {"s state outside the table", {170.0, 60e-3}, {30e-3, 300.0, 2.0}},
       {"NaN s state", {170.0, NAN}, {30e-3, 300.0, 2.0}},
+      {"NaN speed state", {NAN, 30e-3}, {30e-3, 300.0, 2.0}},
   };
   for (const Case& c : cases) {
     Eval e;
@@ -129,6 +130,8 @@ TEST(CvtBlockInputs, BadInputsAreFlaggedNotThrown) {
     EXPECT_NE(flags(b, e) & cvt::kBadInput, 0u) << c.what << ": " << cvt::flag_names(flags(b, e));
     EXPECT_EQ(out(b, e, "outside_model"), 1.0) << c.what;
     EXPECT_TRUE(std::isfinite(e.dx[0]) && std::isfinite(e.dx[1])) << c.what;
+    // Nothing non-finite reaches the topic (a NaN there reads as a diverged run).
+    for (int k = 0; k < b.num_outputs(); ++k) EXPECT_TRUE(std::isfinite(e.y[k])) << c.what << ": " << b.outputs()[k].name;
   }
   // A good input sets none of it.
   const Eval ok = eval(b, 0.0, x, {30e-3, 300.0, 2.0});
@@ -138,6 +141,8 @@ TEST(CvtBlockInputs, BadInputsAreFlaggedNotThrown) {
   EXPECT_EQ(out(b, rev, "torque_reversal"), 1.0);
   EXPECT_EQ(out(b, rev, "belt_loss"), 0.0);
   EXPECT_TRUE(std::isfinite(rev.dx[0]));
+  for (int k = 0; k < b.num_outputs(); ++k) EXPECT_TRUE(std::isfinite(rev.y[k])) << b.outputs()[k].name;
+  EXPECT_EQ(out(b, rev, "eta_PB"), 1.0);  // the lossless belt the equations ran
 }
 
 // The schedule replaces the ratio_command input: held, linear between points, a step where

@@ -31,6 +31,8 @@
 //       feedthrough from load_torque and load_inertia
 // belt_loss and bearing_loss are the powers the equations above dissipate (lossless belt:
 // 0), so that motor power = load power + losses + d/dt kinetic energy holds exactly.
+// Every output is finite: outside the model η_PB is the lossless belt's 1, η_SYS the
+// equations' power ratio, and a number the model does not give is 0 (flags say which).
 // States: input_speed [rad/s], ratio_setting [m].
 #pragma once
 
