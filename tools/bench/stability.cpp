@@ -312,7 +312,10 @@ int run_stability_bench(const std::string& scene_path, const StabilityOptions& o
       }
       out << "\n";
       if (!options.quick || cut.stiffness > 0) {
-        const double lo = (row.stable_h ? *row.stable_h : h0 / span) / 4;
+        // From a quarter of the scene's step (or of the stable step found, if lower): the
+        // map is built a few steps into the run, where the scene's own step keeps it in
+        // its linear range (a bracket far above it would start in saturation).
+        const double lo = std::min(h0, row.stable_h ? *row.stable_h : h0 / span) / 4;
         const double hi = (row.unstable_h ? *row.unstable_h : h0 * span) * 4;
         row.spectral = spectral(scene_path, *base, overrides, lo, hi);
       }
