@@ -67,7 +67,7 @@ CvtMapResult analyse_scene(const config::Scene& scene, const std::vector<std::st
     ++count;
   }
   if (found) {
-    r.config = cosim::parse_cvt_config(found->params, {"drive", "dynamics", "ratio_setting", "initial_speed"});
+    r.config = cosim::parse_cvt_config(found->params, cosim::cvt_time_run_keys());
     r.source = found->key_path + ".params";
     if (count > 1)
       r.notes.push_back(std::to_string(count) + " cvt participants: the first ('" + found->name + "') is mapped");

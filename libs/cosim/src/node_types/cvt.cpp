@@ -16,9 +16,14 @@ namespace cvt = models::cvt;
 using config::ConfigNode;
 namespace dim = config::dim;
 
+const std::vector<std::string>& cvt_time_run_keys() {
+  static const std::vector<std::string> keys{"drive",         "input_inertia",  "output_inertia", "initial_speed",
+                                             "ratio_setting", "ratio_actuator", "shape_table",    "belt_map"};
+  return keys;
+}
+
 cvt::CvtBlockParams parse_cvt_block_params(const ConfigNode& p) {
-  const CvtConfig c = parse_cvt_config(
-      p, {"drive", "input_inertia", "output_inertia", "initial_speed", "ratio_setting", "ratio_actuator", "shape_table", "belt_map"});
+  const CvtConfig c = parse_cvt_config(p, cvt_time_run_keys());
   cvt::CvtBlockParams b;
   b.cvt = c.params;
   b.clamp = c.clamp;

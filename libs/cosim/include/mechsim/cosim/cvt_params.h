@@ -26,6 +26,10 @@ struct CvtConfig {
 // dynamics), accepted and left alone.
 CvtConfig parse_cvt_config(const config::ConfigNode& params, const std::vector<std::string>& other_keys = {});
 
+// The keys of the `cvt` participant's params that belong to the time run, not to the belt
+// (accepted and ignored by `mechsim cvt-map`, so one scene serves both).
+const std::vector<std::string>& cvt_time_run_keys();
+
 // The `cvt` participant's params (node_types/cvt.cpp): the belt keys above plus the time run's
 // drive, inertias, initial state, ratio actuator and shape table (docs/press-line.md).
 models::cvt::CvtBlockParams parse_cvt_block_params(const config::ConfigNode& params);
