@@ -154,6 +154,41 @@ TEST_F(BenchQuick, WritesThePngDiagrams) {
   }
 }
 
+TEST(BenchReference, AnErrorNotAboveTheReferencesOwnIsNeverANumber) {
+  // cam_flat_face: the follower is kinematic, so the Gauss-Seidel ordering (cam first)
+  // reproduces the reference exactly, and the reference's own error estimate is 0 too: an
+  // error of 0 is not above the reference's error and must be refused, not reported as 0.
+  // Zero-order hold Jacobi lags one step and must be reported as a number.
+  const std::string dir = fs::temp_directory_path() / ("mechsim-bench-ref-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string scene = std::string(MECHSIM_SOURCE_DIR) + "/config/scenes/cam_flat_face.yaml";
+  auto r = run_mechsim({"bench", scene, "--quick", "--dds-checks", "0", "--schemes", "gauss_seidel/hold,jacobi/hold",
+                        "--steps", "50 us,100 us", "--rtols", "1e-6", "--json", dir + "/b.json"},
+                       dir + "/b.log", 60);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream f(dir + "/b.json");
+  const json doc = json::parse(f);
+  int refused = 0, measured = 0;
+  for (const auto& row : doc["rows"]) {
+    SCOPED_TRACE(row.dump().substr(0, 400));
+    ASSERT_EQ(row["status"], "ok");
+    if (row["scheme"] == "gauss_seidel/hold") {
+      EXPECT_TRUE(row["error"]["rms_below_reference_accuracy"].get<bool>());
+      EXPECT_TRUE(row["error"]["rms_rel"].is_null());
+      EXPECT_TRUE(row["error"]["max_rel"].is_null());
+      ++refused;
+    } else {
+      EXPECT_FALSE(row["error"]["rms_below_reference_accuracy"].get<bool>());
+      EXPECT_GT(row["error"]["rms_rel"].get<double>(), 0.0);
+      ++measured;
+    }
+  }
+  EXPECT_EQ(refused, 2);
+  EXPECT_EQ(measured, 2);
+  EXPECT_NE(r.output.find("<ref"), std::string::npos) << r.output;
+  fs::remove_all(dir);
+}
+
 TEST(BenchInput, RefusesBadInputWithAMessage) {
   const std::string dir = fs::temp_directory_path() / ("mechsim-bench-bad-" + std::to_string(::getpid()));
   fs::create_directories(dir);

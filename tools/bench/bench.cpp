@@ -968,6 +968,10 @@ int Bench::run() {
       ten_x["met"] = any_other_ok;
       ten_x["note"] = any_other_ok ? "zero-order-hold Jacobi is unstable at every swept H; other schemes are not"
                                    : "no stable run";
+    } else if (!(best > 0)) {
+      ten_x["factor"] = nullptr;
+      ten_x["met"] = nullptr;
+      ten_x["note"] = "no other run with a measurable error at no more wall time than a zero-order-hold run";
     } else {
       ten_x["factor"] = best;
       ten_x["met"] = best >= 10;
