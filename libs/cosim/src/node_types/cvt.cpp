@@ -18,7 +18,8 @@ namespace dim = config::dim;
 
 const std::vector<std::string>& cvt_time_run_keys() {
   static const std::vector<std::string> keys{"drive",         "input_inertia",  "output_inertia", "initial_speed",
-                                             "ratio_setting", "ratio_actuator", "shape_table",    "belt_map"};
+                                             "ratio_setting", "ratio_actuator", "shape_table",    "belt_map",
+                                             "clamping_actuator"};
   return keys;
 }
 
@@ -69,6 +70,13 @@ cvt::CvtBlockParams parse_cvt_block_params(const ConfigNode& p) {
   }
   if (b.belt_table && b.clamp != cvt::ClampMode::safety_factor)
     p.child("belt_map").fail("expected belt_map: direct with clamping: {mode: force} (the table is built at the safety factor)");
+  // `clamping_actuator: {time_constant, initial_force}`: the clamping force lags its setpoint.
+  if (auto a = p.optional_child("clamping_actuator")) {
+    a->allow_only({"time_constant", "initial_force"});
+    if (!b.belt_table) a->fail("expected no clamping actuator lag with belt_map: direct (it runs on the tabulated map)");
+    b.clamp_time_constant = a->positive_quantity("time_constant", dim::time);
+    b.F_K0 = a->non_negative_quantity_or("initial_force", dim::force, -1.0);
+  }
   b.s0 = p.positive_quantity_or("ratio_setting", dim::length, b.s0);
   if (!(b.s0 >= b.s_table_min && b.s0 <= b.s_table_max))
     p.child("ratio_setting").fail("expected a ratio setting s inside the shape table (" +

@@ -63,11 +63,39 @@ CvtBlock::CvtBlock(CvtBlockParams params) : Block("cvt"), p_(std::move(params)),
   out_.outside_model = declare_output("outside_model", "1", ft);
   st_.input_speed = declare_state("input_speed", "rad/s");
   st_.ratio_setting = declare_state("ratio_setting", "m");
+  if (p_.clamp_time_constant > 0) {
+    if (!p_.belt_table) throw CvtInputError("cvt block: the clamping actuator lag needs the tabulated belt map");
+    st_.clamping_force = declare_state("clamping_force", "N");
+    F_K0_ = p_.F_K0;
+    if (F_K0_ < 0) {
+      // The command at the initial state without load: the motor's torque on the belt.
+      const double T = p_.stall_torque * (1.0 - p_.omega0 / p_.no_load_speed);
+      F_K0_ = T > 0 ? table_belt(p_.s0, p_.omega0, T).F_K : 0.0;
+    }
+  } else if (p_.clamp_time_constant < 0 || !std::isfinite(p_.clamp_time_constant)) {
+    throw CvtInputError("cvt block: the clamping time constant must be >= 0");
+  }
 }
 
 void CvtBlock::initial_state(double, std::span<double> x) const {
   x[st_.input_speed] = p_.omega0;
   x[st_.ratio_setting] = p_.s0;
+  if (st_.clamping_force >= 0) x[st_.clamping_force] = F_K0_;
+}
+
+void CvtBlock::apply_clamp_lag(CvtResult& r, double F_act, double F_cmd) const {
+  if (!(F_cmd > 0 && r.T_over_r > 0)) return;  // unloaded or reversed: nothing to clamp against
+  F_act = std::max(F_act, 0.0);
+  r.F_K = F_act;
+  r.v_KD *= F_act / F_cmd;
+  if (F_act * p_.v_K < F_cmd) {  // below the need at v_K = 1: the belt slips
+    r.flags |= kGrossSlip;
+    r.T_C_capacity = r.T_C * F_act * p_.v_K / F_cmd;
+  }
+  r.bearings_prim = model_.bearing_losses(true, p_.cvt.r_C, r.omega_C, F_act, r.T_over_r);
+  r.bearings_sec = model_.bearing_losses(false, r.r_D, r.omega_D, F_act, r.T_over_r);
+  r.T_L_prim = r.bearings_prim.loss_torque();
+  r.T_L_sec = r.bearings_sec.loss_torque();
 }
 
 double CvtBlock::ratio_command(double t, std::span<const double> u) const {
@@ -246,6 +274,8 @@ CvtBlock::Solution CvtBlock::solve(double t, std::span<const double> x, std::spa
     unsigned flags = bad;
     try {
       sol.belt = belt(s, w, T_C);
+      sol.F_cmd = sol.belt.F_K;
+      if (st_.clamping_force >= 0) apply_clamp_lag(sol.belt, x[st_.clamping_force], sol.F_cmd);
       flags |= sol.belt.flags;
     } catch (const CvtInputError&) {
       sol.belt = CvtResult{};
@@ -274,6 +304,8 @@ void CvtBlock::derivatives(double t, std::span<const double> x, std::span<const 
   const Solution sol = solve(t, x, u);
   dxdt[st_.input_speed] = sol.omega_dot;
   dxdt[st_.ratio_setting] = sol.s_dot;
+  if (st_.clamping_force >= 0)
+    dxdt[st_.clamping_force] = ((std::isfinite(sol.F_cmd) ? sol.F_cmd : 0.0) - x[st_.clamping_force]) / p_.clamp_time_constant;
 }
 
 void CvtBlock::calc_outputs(double t, std::span<const double> x, std::span<const double> u, std::span<double> y) const {

@@ -259,3 +259,47 @@ TEST(CvtParams, NodeTypeIsRegisteredBothWays) {
 
 }  // namespace
 }  // namespace mechsim::cosim
+
+namespace mechsim::cosim {
+namespace {
+
+// The clamping actuator lag: F follows the map's F_K with dF/dt = (F_cmd − F)/τ_F; a force
+// below the need at v_K = 1 (F_cmd/v_K) is gross slip, flagged, with a lossless belt; at the
+// command the belt is the lag-free block's.
+TEST(CvtBlockClamp, LaggingClampingForceSlipsWhenTooLow) {
+  cvt::CvtBlockParams p = table_params();
+  const cvt::CvtBlock free(p);
+  p.clamp_time_constant = 0.05;
+  const cvt::CvtBlock lag(p);
+  ASSERT_EQ(lag.num_states(), 3);
+  const std::vector<double> u{30e-3, 45.0, 2.5};
+  const cvt::CvtBlock::Solution ref = free.solve(0.0, std::vector<double>{165.0, 30e-3}, u);
+  const double F_cmd = ref.belt.F_K;
+  ASSERT_GT(F_cmd, 0.0);
+  // At the command: the same state as without the lag (same map, same bearing loads).
+  {
+    const std::vector<double> x{165.0, 30e-3, F_cmd};
+    const Eval e = eval(lag, 0.0, x, u);
+    EXPECT_NEAR(e.dx[0], ref.omega_dot, 1e-9 * std::abs(ref.omega_dot) + 1e-12);
+    EXPECT_NEAR(e.dx[2], 0.0, 1e-6 * F_cmd / p.clamp_time_constant);
+    EXPECT_EQ(out(lag, e, "gross_slip"), 0.0);
+  }
+  // Half the need (F_cmd/v_K/2): gross slip, lossless belt, the force rising towards the command.
+  {
+    const double F = 0.5 * F_cmd / p.v_K;
+    const std::vector<double> x{165.0, 30e-3, F};
+    const Eval e = eval(lag, 0.0, x, u);
+    EXPECT_EQ(out(lag, e, "gross_slip"), 1.0);
+    EXPECT_EQ(out(lag, e, "belt_loss"), 0.0);
+    EXPECT_NEAR(out(lag, e, "clamping_force"), F, 1e-9 * F);
+    EXPECT_LT(out(lag, e, "slip_margin"), 1.0);
+    EXPECT_GT(e.dx[2], 0.0);
+  }
+  // The initial force is the command at the initial state without load (the motor's torque).
+  std::vector<double> x0(3);
+  lag.initial_state(0.0, x0);
+  EXPECT_GT(x0[2], 0.0);
+}
+
+}  // namespace
+}  // namespace mechsim::cosim

@@ -69,6 +69,12 @@ struct CvtBlockParams {
   // evaluation costs ~0.7 ms, far too much for every right-hand side of a time run.
   bool belt_table = false;
   int table_s_points = 11, table_torque_points = 6, table_speed_points = 5;
+  // Clamping actuator lag (belt_table only): > 0 adds the state clamping_force F with
+  // dF/dt = (F_cmd − F)/τ_F, F_cmd the map's F_K at v_K. The belt then runs at F: the slip
+  // margin scales with F/F_cmd, the bearings see F, and F below F_cmd/v_K (the need at
+  // v_K = 1) is gross slip (flagged, lossless belt). 0: F = F_cmd at every instant.
+  double clamp_time_constant = 0.0;  // τ_F [s]
+  double F_K0 = -1.0;                // initial F [N]; < 0: the command at the initial state, no load
 };
 
 class CvtBlock final : public Block {
@@ -92,6 +98,7 @@ class CvtBlock final : public Block {
     double T_L_prim = 0.0, T_L_sec = 0.0;  // bearing torques used [N m]
     double omega_D_dot = 0.0;
     unsigned flags = 0;       // the model's flags and the block's kBadInput
+    double F_cmd = 0.0;       // clamping-force setpoint (the map's F_K) [N]
   };
   // The belt state and the accelerations at (t, x, u).
   Solution solve(double t, std::span<const double> x, std::span<const double> u) const;
@@ -122,8 +129,10 @@ class CvtBlock final : public Block {
         output_acceleration, ratio_command, motor_power, kinetic_energy, gross_slip, torque_reversal, outside_model;
   } out_{};
   struct {
-    int input_speed, ratio_setting;
+    int input_speed, ratio_setting, clamping_force = -1;
   } st_{};
+  double F_K0_ = 0.0;
+  void apply_clamp_lag(CvtResult& r, double F_act, double F_cmd) const;
 };
 
 }  // namespace mechsim::models::cvt
