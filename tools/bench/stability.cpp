@@ -28,6 +28,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -36,6 +37,7 @@
 #include <stdexcept>
 
 #include "json_io.h"
+#include "plot.h"
 #include "stable_step.h"
 #include "mechsim/config/scene.h"
 #include "mechsim/cosim/divergence_guard.h"
@@ -335,6 +337,32 @@ int run_stability_bench(const std::string& scene_path, const StabilityOptions& o
   }
   for (const Row& r : rows)
     if (r.unstable_h) out << "  " << r.scheme << " at " << format_us(*r.unstable_h) << ": " << r.why << "\n";
+
+  // rho(H) per row, log-log, with the bisected limits as points on rho = 1.
+  if (!options.plots_dir.empty()) {
+    // Near 1 everywhere (the loop's slow poles give rho = 1 - O(H)): a narrow linear range
+    // shows the crossing.
+    plot::Panel panel{.title = "spectral radius of the macro-step map (points: bisected stable / unstable H)",
+                      .xlabel = "macro step H [s]", .ylabel = "rho(H)", .logx = true, .yrange = std::pair{0.999, 1.005}};
+    panel.hlines.push_back({1.0, "rho = 1"});
+    for (const Row& r : rows) {
+      if (!r.spectral.linear || r.spectral.rho.empty()) continue;
+      plot::Series curve{.label = r.cut.substr(0, r.cut.find(" (")) + ", " + r.scheme, .style = "linespoints"};
+      for (const auto& [h, rho] : r.spectral.rho) {
+        curve.x.push_back(h);
+        curve.y.push_back(rho);
+      }
+      panel.series.push_back(curve);
+      if (r.stable_h && r.unstable_h)
+        panel.series.push_back({.label = "bisected: " + r.scheme, .x = {*r.stable_h, *r.unstable_h}, .y = {1.0, 1.0}, .style = "points"});
+    }
+    std::string why;
+    const std::string png = options.plots_dir + "/" + base->name + "_stability.png";
+    if (panel.series.empty()) out << "no stability plot: no row with a linear analysis\n";
+    else if (std::filesystem::create_directories(options.plots_dir), !plot::write_png({.title = "Stability of " + base->name, .panels = {panel}}, png, &why))
+      out << "no stability plot: " << why << "\n";
+    else out << "plot: " << png << "\n";
+  }
 
   if (!options.json_path.empty()) {
     json doc;
