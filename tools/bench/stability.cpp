@@ -313,7 +313,15 @@ int run_stability_bench(const std::string& scene_path, const StabilityOptions& o
         return 2;
       }
       out << "\n";
-      if (!options.quick || cut.stiffness > 0) {
+      const bool any_interface_jacobian =
+          std::any_of(cuts.begin(), cuts.end(), [](const Cut& c) { return c.interface_jacobian; });
+      if (any_interface_jacobian) {
+        // Not trusted: on nc_slide_loop_1ms the map built this way gave rho = 0 below 0.7 ms
+        // and 1e200 above, while runs at 1-16 ms stay bounded (docs/stability.md). The
+        // perturbed state misses something of the interface-Jacobian step; until found,
+        // only the bisection is reported for such scenes.
+        row.spectral.note = "no linear analysis with an interface_jacobian cut in the scene (not supported yet)";
+      } else if (!options.quick || cut.stiffness > 0) {
         // From a quarter of the scene's step (or of the stable step found, if lower): the
         // map is built a few steps into the run, where the scene's own step keeps it in
         // its linear range (a bracket far above it would start in saturation).
