@@ -178,6 +178,7 @@ std::vector<SchemeVariant> scheme_variants(const YAML::Node& scene_document) {
       if (gs) {
         c["order"] = "gauss_seidel";
         c.remove("reconstruction");
+        c.remove("initial");  // a Gauss-Seidel edge waits for the partner's step-0 sample
       } else {
         c["order"] = "jacobi";
         c["reconstruction"] = rec;
@@ -202,6 +203,7 @@ std::vector<SchemeVariant> scheme_variants(const YAML::Node& scene_document) {
       if (gs) {
         c["order"] = "gauss_seidel";
         c.remove("reconstruction");
+        c.remove("initial");  // a Gauss-Seidel edge waits for the partner's step-0 sample
       } else {
         c["order"] = "jacobi";
         c["reconstruction"] = rec;
