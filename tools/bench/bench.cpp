@@ -154,67 +154,44 @@ std::vector<SchemeVariant> scheme_variants(const YAML::Node& scene_document) {
   // No coupling element: the order and reconstruction of every connection.
   bool has_gs = false;
   for (const auto& c : conns) has_gs = has_gs || s(c, "order", "jacobi") == "gauss_seidel";
-  for (const char* rec : {"hold", "linear", "quadratic"}) {
-    YAML::Node doc = clone();
-    for (auto c : doc["connections"]) {
-      c["order"] = "jacobi";
-      c["reconstruction"] = rec;
-    }
-    SchemeVariant v;
-    v.name = std::string("jacobi/") + rec;
-    v.family = "jacobi";
-    v.zero_order_hold_jacobi = std::string(rec) == "hold";
-    v.document = doc;
-    out.push_back(v);
-  }
-  for (const char* rec : {"hold", "linear", "quadratic"}) {
-    // The scene's Gauss-Seidel edges (or, without any, its first connection) first; every
-    // Jacobi edge reconstructed with `rec`.
-    YAML::Node doc = clone();
-    std::size_t i = 0;
-    for (auto c : doc["connections"]) {
-      const bool gs = has_gs ? s(c, "order", "jacobi") == "gauss_seidel" : i == 0;
-      ++i;
-      if (gs) {
-        c["order"] = "gauss_seidel";
-        c.remove("reconstruction");
-        c.remove("initial");  // a Gauss-Seidel edge waits for the partner's step-0 sample
-      } else {
-        c["order"] = "jacobi";
-        c["reconstruction"] = rec;
+  // One variant per reconstruction: the connections `first(c, i, n)` picks become
+  // Gauss-Seidel edges, every other one a Jacobi edge reconstructed with `rec`.
+  const auto ordered = [&](const std::string& family, const auto& first) {
+    for (const char* rec : {"hold", "linear", "quadratic"}) {
+      YAML::Node doc = clone();
+      std::size_t i = 0;
+      const std::size_t n = doc["connections"].size();
+      for (auto c : doc["connections"]) {
+        const bool gs = first(c, i, n);
+        ++i;
+        if (gs) {
+          c["order"] = "gauss_seidel";
+          c.remove("reconstruction");
+          c.remove("initial");  // a Gauss-Seidel edge waits for the partner's step-0 sample
+        } else {
+          c["order"] = "jacobi";
+          c["reconstruction"] = rec;
+        }
       }
+      SchemeVariant v;
+      v.name = family + "/" + rec;
+      v.family = family;
+      v.zero_order_hold_jacobi = family == "jacobi" && std::string(rec) == "hold";
+      v.document = doc;
+      out.push_back(v);
     }
-    SchemeVariant v;
-    v.name = std::string("gauss_seidel/") + rec;
-    v.family = "gauss_seidel";
-    v.document = doc;
-    out.push_back(v);
-  }
-  for (const char* rec : {"hold", "linear", "quadratic"}) {
-    // The other ordering: the edges that were Jacobi go first (Gauss-Seidel) and the
-    // Gauss-Seidel ones become Jacobi with `rec` (without any Gauss-Seidel edge: the last
-    // connection first). The validator refuses an ordering with a Gauss-Seidel cycle.
-    YAML::Node doc = clone();
-    std::size_t i = 0;
-    const std::size_t n = doc["connections"].size();
-    for (auto c : doc["connections"]) {
-      const bool gs = has_gs ? s(c, "order", "jacobi") != "gauss_seidel" : i + 1 == n;
-      ++i;
-      if (gs) {
-        c["order"] = "gauss_seidel";
-        c.remove("reconstruction");
-        c.remove("initial");  // a Gauss-Seidel edge waits for the partner's step-0 sample
-      } else {
-        c["order"] = "jacobi";
-        c["reconstruction"] = rec;
-      }
-    }
-    SchemeVariant v;
-    v.name = std::string("gauss_seidel_reversed/") + rec;
-    v.family = "gauss_seidel_reversed";
-    v.document = doc;
-    out.push_back(v);
-  }
+  };
+  ordered("jacobi", [](const YAML::Node&, std::size_t, std::size_t) { return false; });
+  // The scene's Gauss-Seidel edges (or, without any, its first connection) first.
+  ordered("gauss_seidel", [&](const YAML::Node& c, std::size_t i, std::size_t) {
+    return has_gs ? s(c, "order", "jacobi") == "gauss_seidel" : i == 0;
+  });
+  // The other ordering: the edges that were Jacobi go first (Gauss-Seidel) and the
+  // Gauss-Seidel ones become Jacobi (without any Gauss-Seidel edge: the last connection
+  // first). The validator refuses an ordering with a Gauss-Seidel cycle.
+  ordered("gauss_seidel_reversed", [&](const YAML::Node& c, std::size_t i, std::size_t n) {
+    return has_gs ? s(c, "order", "jacobi") != "gauss_seidel" : i + 1 == n;
+  });
   return out;
 }
 
