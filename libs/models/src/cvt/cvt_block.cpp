@@ -2,8 +2,49 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <mutex>
+#include <vector>
 
 namespace mechsim::models::cvt {
+
+namespace {
+
+// Everything the belt-shape table depends on: the model's parameters and the table's range.
+// A new field of CvtParams must be added here (the size check below fails to remind you), or
+// two parameter sets differing in it would share a table.
+static_assert(sizeof(CvtParams) == 400, "CvtParams changed: add the new field to shapes_key");  // LP64
+std::vector<double> shapes_key(const CvtBlockParams& p) {
+  const CvtParams& c = p.cvt;
+  std::vector<double> k{double(c.lambda), double(c.disc_driving), c.r_C, c.link_thickness, c.rocking_radius,
+                        c.closing_angle, c.filling_degree, c.link_mass, c.beta_D, c.beta_C, c.mu_D, c.mu_C, c.mu_E,
+                        c.mu_SUC, c.mu_SU, c.sigma_admissible, c.E_R, c.t_D, c.l_D, c.t_C, c.l_C, c.l_E, c.A_SU,
+                        c.r_D_design[0], c.r_D_design[1], c.grease_viscosity, double(c.acc), c.duwproc,
+                        double(c.full_angle), double(c.quirk_muSUC_radial), double(c.quirk_last_sweep_FA),
+                        double(c.round_clamping_force), c.s_min, c.s_max, c.torque_min, c.torque_max, c.speed_min,
+                        c.speed_max};
+  for (const ShaftBearings* b : {&c.primary, &c.secondary})
+    k.insert(k.end(), {b->A.mean_diameter, b->A.axial_factor, b->A.pressure_centre, b->B.mean_diameter,
+                       b->B.axial_factor, b->B.pressure_centre, b->l1, b->l2});
+  k.insert(k.end(), {p.s_table_min, p.s_table_max, double(p.s_table_points)});
+  return k;
+}
+
+// ... and the belt map: the shapes, the level, the safety factor and the grid.
+std::vector<double> belt_table_key(const CvtBlockParams& p) {
+  std::vector<double> k = shapes_key(p);
+  k.insert(k.end(), {p.v_K, double(p.level), double(p.table_s_points), double(p.table_torque_points),
+                     double(p.table_speed_points)});
+  return k;
+}
+
+// Both tables are pure functions of their keys and cost ~0.1-0.3 s each (belt-shape searches,
+// L1 evaluations): built once per parameter set and process, so that the bench's in-process
+// runs and references (hundreds of blocks with the same parameters) share them. A failed build
+// throws and caches nothing.
+std::mutex cache_mutex;
+
+}  // namespace
 
 CvtBlock::CvtBlock(CvtBlockParams params) : Block("cvt"), p_(std::move(params)), model_(p_.cvt) {
   if (!(p_.J_C > 0 && p_.J_D >= 0 && p_.stall_torque > 0 && p_.no_load_speed > 0 && p_.ratio_time_constant > 0))
@@ -21,7 +62,7 @@ CvtBlock::CvtBlock(CvtBlockParams params) : Block("cvt"), p_(std::move(params)),
     if (!(s >= p_.s_table_min && s <= p_.s_table_max))
       throw CvtInputError("cvt block: every ratio setting of the schedule must lie in the tabulated range");
   }
-  model_.tabulate_shapes(p_.s_table_min, p_.s_table_max, p_.s_table_points);
+  tabulate_shapes();
   if (p_.belt_table) {
     if (p_.clamp != ClampMode::safety_factor)
       throw CvtInputError("cvt block: the tabulated belt map needs safety-factor clamping (use direct evaluation with a clamping force)");
@@ -112,7 +153,39 @@ double CvtBlock::ratio_command(double t, std::span<const double> u) const {
   return sch.back().second;
 }
 
+void CvtBlock::tabulate_shapes() {
+  // The model right after tabulating holds the shape table and no other searched shape: a
+  // copy of it is the state this block would reach by searching itself.
+  static std::map<std::vector<double>, CvtModel> cache;
+  const std::vector<double> key = shapes_key(p_);
+  {
+    std::lock_guard<std::mutex> lock(cache_mutex);
+    if (auto it = cache.find(key); it != cache.end()) {
+      model_ = it->second;
+      return;
+    }
+  }
+  model_.tabulate_shapes(p_.s_table_min, p_.s_table_max, p_.s_table_points);
+  std::lock_guard<std::mutex> lock(cache_mutex);
+  cache.emplace(key, model_);
+}
+
 void CvtBlock::build_table() {
+  static std::map<std::vector<double>, Table> cache;
+  const std::vector<double> key = belt_table_key(p_);
+  {
+    std::lock_guard<std::mutex> lock(cache_mutex);
+    if (auto it = cache.find(key); it != cache.end()) {
+      table_ = it->second;
+      return;
+    }
+  }
+  compute_table();
+  std::lock_guard<std::mutex> lock(cache_mutex);
+  cache.emplace(key, table_);
+}
+
+void CvtBlock::compute_table() {
   Table& T = table_;
   const CvtParams& c = p_.cvt;
   T.ns = p_.table_s_points;

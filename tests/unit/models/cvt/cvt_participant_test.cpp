@@ -92,6 +92,48 @@ TEST(CvtBlockTable, ShapeTableMatchesTheSearch) {
   }
 }
 
+// The belt-shape table and the belt map are built once per parameter set in a process and
+// shared by later blocks (the bench constructs hundreds). A block with other parameters must
+// get its own: at a node its map is the model with its own parameters (as in
+// IsTheModelAtANode, 1e-12 / 1e-9), which a table shared with the default block misses by
+// far (F_K scales with v_K: 1.2 against 1.3 is 8 %; mu_D 0.10 against 0.12 moves eta_PB and
+// F_K by percent), and its shapes are those of its own geometry (r_C 45 against 41.5 mm
+// moves the ratio at a given s by ~1e-2, against the table's 1e-5). A second block with the
+// same parameters gets the same numbers bit for bit.
+TEST(CvtBlockTable, CachedPerParameterSet) {
+  const cvt::CvtBlock a(table_params()), a2(table_params());
+  cvt::CvtBlockParams pv = table_params();
+  pv.v_K = 1.2;
+  cvt::CvtBlockParams pm = table_params();
+  pm.cvt.mu_D = 0.10;
+  const cvt::CvtBlock bv(pv), bm(pm);
+  const double s = 30e-3, w = 3000 * rpm, T = 60.0;
+  const cvt::CvtResult ra = a.belt(s, w, T), ra2 = a2.belt(s, w, T);
+  EXPECT_EQ(ra.eta_PB, ra2.eta_PB);
+  EXPECT_EQ(ra.F_K, ra2.F_K);
+  EXPECT_EQ(ra.sigma[2], ra2.sigma[2]);
+  for (const auto* b : {&bv, &bm}) {
+    cvt::CvtModel m(b->params().cvt);
+    cvt::CvtOperatingPoint op;
+    op.s = s;
+    op.omega_C = w;
+    op.torque = T;
+    op.v_K = b->params().v_K;
+    const cvt::CvtResult d = m.evaluate(op), t = b->belt(s, w, T);
+    EXPECT_NEAR(t.eta_PB, d.eta_PB, 1e-12);
+    EXPECT_NEAR(t.F_K, d.F_K, 1e-9 * d.F_K);
+    EXPECT_NEAR(t.sigma[2], d.sigma[2], 1e-9 * d.sigma[2]);
+    EXPECT_GT(std::abs(t.F_K / ra.F_K - 1) + std::abs(t.eta_PB - ra.eta_PB), 1e-3);  // the case differs
+  }
+  cvt::CvtBlockParams pg;  // direct evaluation: only the shape table
+  pg.cvt.r_C = 45e-3;
+  const cvt::CvtBlock g(pg);
+  cvt::CvtModel fresh(pg.cvt);
+  const double s1 = 24.81e-3;
+  EXPECT_NEAR(g.belt(s1, 2000 * rpm, 50.0).ratio, fresh.shape(s1).ratio(), 1e-5);
+  EXPECT_GT(std::abs(g.belt(s1, 2000 * rpm, 50.0).ratio - a.belt(s1, 2000 * rpm, 50.0).ratio), 1e-3);
+}
+
 struct Eval {
   std::vector<double> dx, y;
 };

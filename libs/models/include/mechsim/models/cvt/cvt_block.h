@@ -118,7 +118,9 @@ class CvtBlock final : public Block {
     static constexpr int kFields = 7;  // η_PB, F_K/(T/r), v_KD, σ1..σ4
     std::vector<double> v;             // [((is·nt + it)·nw + iw)·kFields + f]
   } table_;
-  void build_table();
+  void tabulate_shapes();  // the model's belt-shape table, from the process's cache or searched
+  void build_table();      // from the process's cache of belt maps, or compute_table()
+  void compute_table();
   CvtResult table_belt(double s, double omega_C, double T_C) const;
   struct {
     int ratio_command = -1, load_torque = -1, load_inertia = -1;
