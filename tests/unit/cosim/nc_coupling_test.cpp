@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "in_process_run.h"
+#include "mechsim/cosim/stepped_run.h"
 #include "scene_files.h"
 
 namespace mechsim::cosim {
@@ -47,23 +48,28 @@ Figures run_nc(const std::string& h, std::vector<std::string> overrides = {},
   overrides.push_back("time.step=" + h);
   overrides.push_back("participants.servo.params.sample_time=" + h);
   const std::string file = testing::write_scene(text);
-  auto scene = std::make_unique<config::Scene>(config::load_scene(file, overrides));
-  ScenePlan plan = ScenePlan::build(*scene);
-  testing::InProcessRun run = testing::run_in_process(plan);
+  SteppedRun run(file, overrides);
+  std::size_t slide = 0;
+  while (run.plan().nodes()[slide].name() != "slide") ++slide;
+  const int position = run.plan().nodes()[slide].block->output_index("slide_position");
+  std::vector<double> x;
+  run.on_publish = [&](std::size_t node, std::uint64_t, const std::vector<double>& y) {
+    if (node == slide) x.push_back(y[static_cast<std::size_t>(position)]);
+  };
+  run.advance(run.steps());
   Figures f;
-  if (run.diverged) return f;
+  if (run.diverged()) return f;
   auto ref_scene = std::make_unique<config::Scene>(config::load_scene(file, overrides));
   ScenePlan ref_plan = ScenePlan::build(*ref_scene);
   const ReferenceRun ref = run_reference(ref_plan);
   const auto& x_ref = ref.log.data[ref.log.column("slide.slide_position")];
-  const std::vector<double> x = run.signal(plan, "slide", "slide_position");
   if (x.size() != x_ref.size()) throw std::logic_error("co-simulation and reference differ in length");
   double sum = 0;
   for (std::size_t k = 0; k < x.size(); ++k) sum += (x[k] - x_ref[k]) * (x[k] - x_ref[k]);
   f.stable = true;
   if (step == 0) step = x_ref.back();
   f.rms_error = std::sqrt(sum / static_cast<double>(x.size())) / step;
-  const double hs = scene->time.step;
+  const double hs = run.scene().time.step;
   const double rise = testing::rise_time(x, hs, step), rise_ref = testing::rise_time(x_ref, hs, step);
   f.rise_error = (rise - rise_ref) / rise_ref;
   f.final_error = (x.back() - x_ref.back()) / step;
@@ -94,10 +100,9 @@ TEST(NcCoupling, LinearExtrapolationOfTheCompliantCouplingDivergesAt250us) {
   // linearly): its limit with a sampled amplifier lies below 250 us (docs/nc-loop.md), so
   // the run must be stopped by the divergence guard: the case the new scheme is for.
   const std::string text = nc_scene("compliant", "linear");
-  auto scene = std::make_unique<config::Scene>(
-      config::load_scene(testing::write_scene(text), {"time.step=250us", "participants.servo.params.sample_time=250us"}));
-  ScenePlan plan = ScenePlan::build(*scene);
-  EXPECT_TRUE(testing::run_in_process(plan).diverged.has_value());
+  SteppedRun run(testing::write_scene(text), {"time.step=250us", "participants.servo.params.sample_time=250us"});
+  run.advance(run.steps());
+  EXPECT_TRUE(run.diverged().has_value());
 }
 
 // Measurement, not a check: MECHSIM_NC_SWEEP="1ms 500us 250us" prints the figures per step
