@@ -10,32 +10,26 @@ namespace mechsim::models::cvt {
 
 namespace {
 
-// Everything the belt-shape table depends on: the model's parameters and the table's range.
-// A new field of CvtParams must be added here (the size check below fails to remind you), or
-// two parameter sets differing in it would share a table.
-static_assert(sizeof(CvtParams) == 400, "CvtParams changed: add the new field to shapes_key");  // LP64
-std::vector<double> shapes_key(const CvtBlockParams& p) {
-  const CvtParams& c = p.cvt;
-  std::vector<double> k{double(c.lambda), double(c.disc_driving), c.r_C, c.link_thickness, c.rocking_radius,
-                        c.closing_angle, c.filling_degree, c.link_mass, c.beta_D, c.beta_C, c.mu_D, c.mu_C, c.mu_E,
-                        c.mu_SUC, c.mu_SU, c.sigma_admissible, c.E_R, c.t_D, c.l_D, c.t_C, c.l_C, c.l_E, c.A_SU,
-                        c.r_D_design[0], c.r_D_design[1], c.grease_viscosity, double(c.acc), c.duwproc,
-                        double(c.full_angle), double(c.quirk_muSUC_radial), double(c.quirk_last_sweep_FA),
-                        double(c.round_clamping_force), c.s_min, c.s_max, c.torque_min, c.torque_max, c.speed_min,
-                        c.speed_max};
-  for (const ShaftBearings* b : {&c.primary, &c.secondary})
-    k.insert(k.end(), {b->A.mean_diameter, b->A.axial_factor, b->A.pressure_centre, b->B.mean_diameter,
-                       b->B.axial_factor, b->B.pressure_centre, b->l1, b->l2});
-  k.insert(k.end(), {p.s_table_min, p.s_table_max, double(p.s_table_points)});
-  return k;
-}
+// Everything the belt-shape table depends on: the model's parameters (compared member by
+// member: a field added to CvtParams is part of the key by itself) and the table's range.
+struct ShapesKey {
+  CvtParams cvt;
+  double s_min, s_max;
+  int points;
+  auto operator<=>(const ShapesKey&) const = default;
+};
+ShapesKey shapes_key(const CvtBlockParams& p) { return {p.cvt, p.s_table_min, p.s_table_max, p.s_table_points}; }
 
 // ... and the belt map: the shapes, the level, the safety factor and the grid.
-std::vector<double> belt_table_key(const CvtBlockParams& p) {
-  std::vector<double> k = shapes_key(p);
-  k.insert(k.end(), {p.v_K, double(p.level), double(p.table_s_points), double(p.table_torque_points),
-                     double(p.table_speed_points)});
-  return k;
+struct BeltTableKey {
+  ShapesKey shapes;
+  double v_K;
+  Level level;
+  int s_points, torque_points, speed_points;
+  auto operator<=>(const BeltTableKey&) const = default;
+};
+BeltTableKey belt_table_key(const CvtBlockParams& p) {
+  return {shapes_key(p), p.v_K, p.level, p.table_s_points, p.table_torque_points, p.table_speed_points};
 }
 
 // Both tables are pure functions of their keys and cost ~0.1-0.3 s each (belt-shape searches,
@@ -43,6 +37,21 @@ std::vector<double> belt_table_key(const CvtBlockParams& p) {
 // runs and references (hundreds of blocks with the same parameters) share them. A failed build
 // throws and caches nothing.
 std::mutex cache_mutex;
+
+// Sets `value` from the cache under `key`, or builds it with `build()` and caches it.
+template <typename Key, typename Value, typename Build>
+void from_cache(std::map<Key, Value>& cache, const Key& key, Value& value, Build build) {
+  {
+    std::lock_guard<std::mutex> lock(cache_mutex);
+    if (auto it = cache.find(key); it != cache.end()) {
+      value = it->second;
+      return;
+    }
+  }
+  build();
+  std::lock_guard<std::mutex> lock(cache_mutex);
+  cache.emplace(key, value);
+}
 
 }  // namespace
 
@@ -156,33 +165,14 @@ double CvtBlock::ratio_command(double t, std::span<const double> u) const {
 void CvtBlock::tabulate_shapes() {
   // The model right after tabulating holds the shape table and no other searched shape: a
   // copy of it is the state this block would reach by searching itself.
-  static std::map<std::vector<double>, CvtModel> cache;
-  const std::vector<double> key = shapes_key(p_);
-  {
-    std::lock_guard<std::mutex> lock(cache_mutex);
-    if (auto it = cache.find(key); it != cache.end()) {
-      model_ = it->second;
-      return;
-    }
-  }
-  model_.tabulate_shapes(p_.s_table_min, p_.s_table_max, p_.s_table_points);
-  std::lock_guard<std::mutex> lock(cache_mutex);
-  cache.emplace(key, model_);
+  static std::map<ShapesKey, CvtModel> cache;
+  from_cache(cache, shapes_key(p_), model_,
+             [&] { model_.tabulate_shapes(p_.s_table_min, p_.s_table_max, p_.s_table_points); });
 }
 
 void CvtBlock::build_table() {
-  static std::map<std::vector<double>, Table> cache;
-  const std::vector<double> key = belt_table_key(p_);
-  {
-    std::lock_guard<std::mutex> lock(cache_mutex);
-    if (auto it = cache.find(key); it != cache.end()) {
-      table_ = it->second;
-      return;
-    }
-  }
-  compute_table();
-  std::lock_guard<std::mutex> lock(cache_mutex);
-  cache.emplace(key, table_);
+  static std::map<BeltTableKey, Table> cache;
+  from_cache(cache, belt_table_key(p_), table_, [&] { compute_table(); });
 }
 
 void CvtBlock::compute_table() {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <compare>
 #include <numbers>
 
 namespace mechsim::models::cvt {
@@ -15,6 +16,7 @@ struct TaperedBearing {
   double mean_diameter = 0.0;  // d_m = (d + D)/2 [m]
   double axial_factor = 0.0;   // Y [-]
   double pressure_centre = 0.0;  // a [m] (a1 for bearing A, a2 for bearing B)
+  auto operator<=>(const TaperedBearing&) const = default;
 };
 
 // The two bearings of one shaft in O arrangement and their spacing (spec §3.9).
@@ -22,6 +24,7 @@ struct ShaftBearings {
   TaperedBearing A, B;
   double l1 = 0.0;  // [m]
   double l2 = 0.0;  // [m]
+  auto operator<=>(const ShaftBearings&) const = default;
 };
 
 struct CvtParams {
@@ -67,6 +70,8 @@ struct CvtParams {
   double speed_max = 5000.0 * std::numbers::pi / 30.0;
 
   double rho() const { return rocking_radius / link_thickness; }
+  // Member by member (a process-wide cache of belt tables is keyed on the parameters).
+  auto operator<=>(const CvtParams&) const = default;
 };
 
 }  // namespace mechsim::models::cvt
