@@ -11,6 +11,7 @@
 #include "mechsim/config/scene.h"
 #include "mechsim/cosim/node_runner.h"
 #include "mechsim/cosim/output_log.h"
+#include "mechsim/cosim/process_realtime.h"
 #include "mechsim/cosim/replay_block.h"
 #include "mechsim/cosim/scene_plan.h"
 #include "mechsim/transport/backends.h"
@@ -61,6 +62,15 @@ int node_main(const char* node_type, int argc, char** argv) {
       cosim::PlannedNode& node = plan.node(node_name);
       cosim::replace_with_replay(node, cosim::recorded_topic_from_log(cosim::read_output_log(replay), *node.type->publishes, replay),
                                  scene.time);
+    }
+    // Real-time mode only (a lock-step run of FIFO nodes flat out would starve the rest of
+    // the machine), and before the DDS participant exists, so that the vendor's threads
+    // inherit the policy.
+    const bool paced = scene.mode == "realtime";
+    const cosim::AppliedRealtime applied = paced ? cosim::apply_process_realtime(spec->process_realtime) : cosim::AppliedRealtime{};
+    if (paced && spec->process_realtime.any()) {
+      std::printf("process: %s\n", applied.describe().c_str());
+      if (!run_dir.empty()) applied.write_json(run_dir + "/" + node_name + ".process.json");
     }
     auto participant = transport::create_participant(spec->vendor, domain);
     cosim::NodeRunOptions options;

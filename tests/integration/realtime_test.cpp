@@ -2,7 +2,12 @@
 // wall time, and an impossible real-time factor stops the run with the measured maximum.
 #include <gtest/gtest.h>
 
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "run_fixture.h"
@@ -32,6 +37,73 @@ TEST_F(Realtime, PacedAndLockStepRunsGiveBitIdenticalOutputs) {
   }
   EXPECT_TRUE(summary("rt").contains("realtime"));
   EXPECT_FALSE(summary("ls").contains("realtime"));
+}
+
+TEST_F(Realtime, EveryPublicationIsInTheLatenessHistogramAndThePngIsWritten) {
+  // 0.5 s at 1 ms: 501 publications per node (step 0 included). The histogram's bins and
+  // its overflow count every one of them, and its p99 lies between the median and the max.
+  std::vector<std::string> args = launch_args(scene_path("cam_press_rt.yaml"), "rt", {"--end", "0.5 s"});
+  args.erase(std::find(args.begin(), args.end(), "--no-plot"));
+  CommandResult r = run(args, log("rt"), 60);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const json s = summary("rt");
+  for (const char* node : {"cam", "follower"}) {
+    const json& f = s["realtime"]["nodes"][node];
+    long counted = f["lateness_histogram"]["overflow"].get<long>();
+    for (const auto& bin : f["lateness_histogram"]["bins"]) counted += bin[1].get<long>();
+    EXPECT_EQ(f["publications"].get<long>(), 501) << node;
+    EXPECT_EQ(counted, 501) << node;
+    EXPECT_LE(f["lateness_median_s"].get<double>(), f["lateness_p99_s"].get<double>());
+    EXPECT_LE(f["lateness_p99_s"].get<double>(), f["lateness_max_s"].get<double>() + 1e-6);
+    EXPECT_GE(f["period_jitter_std_s"].get<double>(), 0.0);
+    EXPECT_GE(f["period_jitter_max_s"].get<double>(), f["period_jitter_std_s"].get<double>());
+    EXPECT_TRUE(fs::exists(folder("rt") / (std::string(node) + ".lateness.png"))) << node;
+  }
+  EXPECT_EQ(s["files"]["lateness_png"].size(), 2u);
+}
+
+// Real-time process settings. CI runs as root: the settings are applied and reported; the
+// refusal is shown by running the launcher as user nobody (setpriv), who lacks the rights.
+TEST_F(Realtime, ProcessSettingsAreAppliedAndReportedPerNode) {
+  if (::geteuid() != 0) GTEST_SKIP() << "needs root (SCHED_FIFO, mlockall); the refusal test covers an unprivileged user";
+  // cam_press_rt asks for SCHED_FIFO 50 and locked memory; the follower is pinned to CPU 0 here.
+  std::string text = slurp(scene_path("cam_press_rt.yaml"));
+  text.replace(text.find("    type: follower\n"), 19, "    type: follower\n    realtime: {cpus: [0], priority: 20}\n");
+  const std::string scene = (dir_ / "pinned.yaml").string();
+  std::ofstream(scene) << text;
+  CommandResult r = run(launch_args(scene, "rt", {"--end", "0.3 s"}), log("rt"), 60);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const json applied = summary("rt")["process_realtime"];
+  EXPECT_EQ(applied["cam"]["policy"], "SCHED_FIFO");
+  EXPECT_EQ(applied["cam"]["priority"], 50);
+  EXPECT_EQ(applied["cam"]["memory_locked"], true);
+  EXPECT_TRUE(applied["cam"]["cpus"].empty());
+  EXPECT_EQ(applied["follower"]["priority"], 20);        // the participant's key over the scene's
+  EXPECT_EQ(applied["follower"]["memory_locked"], true);  // the scene's, not overridden
+  EXPECT_EQ(applied["follower"]["cpus"], json::array({0}));
+  EXPECT_NE(r.output.find("process follower"), std::string::npos) << r.output;
+}
+
+TEST_F(Realtime, SettingsTheProcessMayNotApplyAreRefusedBeforeAnyNodeStarts) {
+  std::vector<std::string> args = launch_args(scene_path("cam_press_rt.yaml"), "rt", {"--end", "0.3 s"});
+  if (::geteuid() == 0) {
+    if (::access("/usr/bin/setpriv", X_OK) != 0) GTEST_SKIP() << "setpriv (util-linux) missing: cannot drop root";
+    // User nobody, no capabilities, RLIMIT_RTPRIO 0: SCHED_FIFO 50 is not allowed.
+    fs::permissions(dir_, fs::perms::all);
+    args.insert(args.begin(), {"/usr/bin/setpriv", "--reuid=65534", "--regid=65534", "--clear-groups", "--inh-caps=-all",
+                               "/usr/bin/prlimit", "--rtprio=0", "--memlock=65536", "--"});
+  } else {
+    rlimit rt{};
+    getrlimit(RLIMIT_RTPRIO, &rt);
+    if (rt.rlim_cur == RLIM_INFINITY || rt.rlim_cur >= 50) GTEST_SKIP() << "this user may use SCHED_FIFO 50 (RLIMIT_RTPRIO)";
+  }
+  CommandResult r = run(args, log("rt"), 60);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("realtime.priority: SCHED_FIFO priority 50 needs root, CAP_SYS_NICE or RLIMIT_RTPRIO >= 50"),
+            std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("nothing was started"), std::string::npos) << r.output;
+  // No node ran: no node log in the run folder.
+  for (const auto& e : fs::recursive_directory_iterator(dir_ / "rt")) EXPECT_NE(e.path().extension(), ".log") << e.path();
 }
 
 TEST_F(Realtime, APacedRunTakesSimulatedTimeOverRtfOfWallTime) {

@@ -36,6 +36,7 @@
 #include "json_io.h"
 #include "plot.h"
 #include "provenance.h"
+#include "realtime_report.h"
 #include "reference_accuracy.h"
 
 namespace mechsim::launch {
@@ -185,13 +186,14 @@ void Run::print_progress(double since_start, bool final_line) {
   std::string realtime;
   if (scene_.mode == "realtime") {
     long long missed = 0;
-    double late = 0;
+    double late = 0, p99 = 0;
     for (const auto& [name, w] : watch_) {
       missed += w.last.missed_deadlines;
       late = std::max(late, w.last.lateness_max);
+      p99 = std::max(p99, w.last.lateness_p99);
     }
-    char buf[96];
-    std::snprintf(buf, sizeof buf, "  missed %lld  max late %.2f ms", missed, late * 1e3);
+    char buf[128];
+    std::snprintf(buf, sizeof buf, "  missed %lld  late p99 %.3f ms  max %.2f ms", missed, p99 * 1e3, late * 1e3);
     realtime = buf;
   }
   std::fprintf(stderr, "\r[%s] t = %.4f / %.4f s  step %llu / %ld  %.0f steps/s  rtf %.2f%s   %s", scene_.name.c_str(), t,
@@ -437,38 +439,23 @@ json Run::summarise(const RunOutcome& out) {
     }
   }
   s["events"] = events;
-  if (scene_.mode == "realtime") {
-    // Lateness and deadline figures per node (from <node>.realtime.json) and for the run.
-    json per_node = json::object();
-    long long missed = 0;
-    double p99 = 0, worst = 0, paced = 0, rtf = std::numeric_limits<double>::infinity();
-    for (auto& p : processes_.processes()) {
-      std::ifstream in(run_dir_ + "/" + p.name + ".realtime.json");
-      json f = json::parse(in, nullptr, false);
-      if (f.is_discarded()) continue;
-      per_node[p.name] = f;
-      missed += f.value("missed_deadlines", 0LL);
-      p99 = std::max(p99, f.value("lateness_p99_s", 0.0));
-      worst = std::max(worst, f.value("lateness_max_s", 0.0));
-      rtf = std::min(rtf, f.value("rtf_achieved", 0.0));
-      paced = std::max(paced, f.value("paced_wall_time_s", 0.0));
-    }
-    s["realtime"] = {{"rtf_requested", scene_.rtf},
-                     {"warnings", warnings_},
-                     {"on_overrun", scene_.realtime.on_overrun},
-                     {"wait", scene_.realtime.spin_wait ? "spin" : "blocking"},
-                     {"missed_deadlines", missed},
-                     {"lateness_p99_s", p99},
-                     {"lateness_max_s", worst},
-                     {"rtf_achieved", std::isfinite(rtf) ? rtf : 0.0},
-                     {"paced_wall_time_s", paced},
-                     {"nodes", per_node}};
-  }
+  std::vector<std::string> node_names;
+  for (const auto& p : processes_.processes()) node_names.push_back(p.name);
+  if (scene_.mode == "realtime") s["realtime"] = realtime_summary(scene_, node_names, run_dir_, warnings_);
+  s["process_realtime"] = process_settings_summary(node_names, run_dir_);
   return s;
 }
 
 int Run::execute() {
   tty_ = ::isatty(STDERR_FILENO);
+  // Real-time process settings: refused here, before anything starts, when the nodes
+  // (which inherit the launcher's credentials and limits) could not apply them.
+  if (const auto problems = realtime_rights_problems(scene_); !problems.empty()) {
+    for (const auto& why : problems) std::fprintf(stderr, "mechsim launch: %s: %s\n", scene_.file.c_str(), why.c_str());
+    std::fprintf(stderr, "mechsim launch: refused: the scene asks for real-time settings this process may not apply "
+                         "(docs/realtime.md, 'Rights'); nothing was started\n");
+    return 2;
+  }
   std::random_device rd;
   run_id_ = (static_cast<std::uint64_t>(rd()) << 32) ^ rd() ^ static_cast<std::uint64_t>(::getpid());
   run_dir_ = (fs::path(opt_.runs_dir) / (scene_.name + "-" + hex_id(run_id_).substr(8))).string();
@@ -602,6 +589,12 @@ int Run::execute() {
         std::fprintf(stderr, "mechsim: no plot: %s\n", why.c_str());
     }
   }
+  if (opt_.plots && summary.contains("realtime")) {
+    std::string why;
+    const auto pngs = write_lateness_plots(summary["realtime"], scene_.time.step / scene_.rtf, run_dir_, &why);
+    for (const auto& png : pngs) summary["files"]["lateness_png"].push_back(png);
+    if (pngs.empty() && !why.empty()) std::fprintf(stderr, "mechsim: no lateness plot: %s\n", why.c_str());
+  }
   tools::write_json_file(run_dir_ + "/summary.json", summary);
   if (!opt_.json_path.empty()) tools::write_json_file(opt_.json_path, summary);
 
@@ -615,13 +608,7 @@ int Run::execute() {
                   e["max_abs_error"].get<double>(), e["unit"].get<std::string>().c_str(),
                   100 * e["max_rel_error"].get<double>(), e["rms_abs_error"].get<double>());
     print_figures(summary["report"]);
-    if (summary.contains("realtime")) {
-      const json& r = summary["realtime"];
-      std::printf("  real time (rtf %g, %s wait): %lld missed deadlines, lateness p99 %.3f ms, max %.3f ms, achieved rtf %.3f\n",
-                  r["rtf_requested"].get<double>(), r["wait"].get<std::string>().c_str(), r["missed_deadlines"].get<long long>(),
-                  1e3 * r["lateness_p99_s"].get<double>(), 1e3 * r["lateness_max_s"].get<double>(),
-                  r["rtf_achieved"].get<double>());
-    }
+    print_realtime_summary(summary);
     if (!summary["events"].empty()) {
       std::map<std::string, int> counts;
       for (const auto& e : summary["events"]) ++counts[e["node"].get<std::string>() + "." + e.value("kind", "?")];

@@ -105,6 +105,29 @@ std::optional<RecordSpec> parse_record(const ConfigNode& r) {
   return spec;
 }
 
+// The process keys of a `realtime:` map over `base` (the scene's, for a participant).
+ProcessRealtimeSpec parse_process_realtime(const ConfigNode& rt, ProcessRealtimeSpec base) {
+  if (rt.has("priority")) {
+    const long prio = rt.integer("priority");
+    if (prio < 0 || prio > 99) rt.child("priority").fail("expected a SCHED_FIFO priority in 1..99 (0: the default scheduler)");
+    base.priority = static_cast<int>(prio);
+  }
+  if (rt.has("lock_memory")) base.lock_memory = rt.boolean("lock_memory");
+  if (rt.has("cpus")) {
+    const ConfigNode list = rt.child("cpus");
+    if (!list.is_sequence() || list.size() == 0) list.fail("expected a non-empty list of CPU numbers, e.g. [1]");
+    base.cpus.clear();
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const ConfigNode c = list.at(i);
+      const long cpu = c.as_integer();
+      if (cpu < 0 || cpu > 1023) c.fail("expected a CPU number in 0..1023");
+      base.cpus.push_back(static_cast<int>(cpu));
+    }
+  }
+  if (rt.has("priority") || rt.has("lock_memory") || rt.has("cpus")) base.key_path = rt.path();
+  return base;
+}
+
 }  // namespace
 
 Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
@@ -127,11 +150,13 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
     scene.rtf = root.number("rtf");
     if (!(scene.rtf > 0)) root.child("rtf").fail("expected a real-time factor > 0");
   }
+  ProcessRealtimeSpec scene_process_realtime;
   if (auto rt = root.optional_child("realtime")) {
-    rt->allow_only({"on_overrun", "wait", "spin_limit"});
+    rt->allow_only({"on_overrun", "wait", "spin_limit", "priority", "lock_memory", "cpus"});
     scene.realtime.on_overrun = rt->choice_or("on_overrun", {"continue", "abort"}, "continue");
     scene.realtime.spin_wait = rt->choice_or("wait", {"blocking", "spin"}, "blocking") == "spin";
     scene.realtime.spin_limit = rt->positive_quantity_or("spin_limit", dim::time, scene.realtime.spin_limit);
+    scene_process_realtime = parse_process_realtime(*rt, scene_process_realtime);
   }
   if (root.has("hang_timeout")) scene.hang_timeout = root.positive_quantity("hang_timeout", dim::time);
   if (auto dds = root.optional_child("dds")) {
@@ -152,11 +177,16 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   for (const std::string& name : participants.keys()) {
     ConfigNode p = participants.child(name);
     if (!valid_name(name)) p.fail("expected an instance name of letters, digits and '_'");
-    p.allow_only({"type", "params", "dds", "solver"});
+    p.allow_only({"type", "params", "dds", "solver", "realtime"});
     ParticipantSpec spec;
     spec.name = name;
     spec.type = p.string("type");
     spec.vendor = p.has("dds") ? p.choice("dds", {"cyclone", "fastdds"}) : scene.vendor;
+    spec.process_realtime = scene_process_realtime;
+    if (auto rt = p.optional_child("realtime")) {
+      rt->allow_only({"priority", "lock_memory", "cpus"});
+      spec.process_realtime = parse_process_realtime(*rt, scene_process_realtime);
+    }
     if (auto s = p.optional_child("solver")) spec.solver = parse_solver(*s);
     spec.params = p.has("params") ? p.child("params") : ConfigNode::from_string("{}", root.file());
     spec.key_path = p.path();

@@ -5,10 +5,21 @@
 namespace mechsim::cosim {
 
 InputChannel::InputChannel(config::EdgeOrder order, config::Reconstruction reconstruction, double t0, double step)
-    : order_(order), reconstruction_(reconstruction), t0_(t0), step_(step) {}
+    : order_(order), reconstruction_(reconstruction), t0_(t0), step_(step) {
+  spare_.reserve(16);  // a channel holds 3-4 samples at a time; room for bursts ahead
+}
 
-void InputChannel::add(std::uint64_t step, std::vector<double> values) {
-  samples_.emplace(step, std::move(values));
+void InputChannel::add(std::uint64_t step, const std::vector<double>& values) {
+  if (samples_.count(step)) return;
+  if (spare_.empty()) {
+    samples_.emplace(step, values);
+    return;
+  }
+  auto node = std::move(spare_.back());
+  spare_.pop_back();
+  node.key() = step;
+  node.mapped().assign(values.begin(), values.end());  // same width every step: no reallocation
+  samples_.insert(std::move(node));
 }
 
 const std::vector<double>* InputChannel::find(std::uint64_t step) const {
@@ -86,7 +97,10 @@ void InputChannel::initial_values_at(std::vector<double>& out) const {
 void InputChannel::discard_before(std::uint64_t k) {
   // Quadratic extrapolation at step k needs k-1 and k-2.
   std::uint64_t keep_from = k >= 2 ? k - 2 : 0;
-  samples_.erase(samples_.begin(), samples_.lower_bound(keep_from));
+  while (!samples_.empty() && samples_.begin()->first < keep_from) {
+    if (spare_.size() < spare_.capacity()) spare_.push_back(samples_.extract(samples_.begin()));
+    else samples_.erase(samples_.begin());
+  }
 }
 
 }  // namespace mechsim::cosim

@@ -82,6 +82,31 @@ void log_event(const models::BlockEvent& ev, const std::unique_ptr<std::FILE, in
   }
 }
 
+// The node's real-time figures and its lateness histogram (non-empty 1 us bins as
+// [bin, count] pairs) for the launcher's summary and the lateness PNG.
+void write_realtime_figures(const std::string& path, const Pacer& pacer) {
+  std::FILE* out = std::fopen(path.c_str(), "w");
+  if (!out) return;
+  const RealtimeFigures f = pacer.figures();
+  const LatenessHistogram& h = pacer.histogram();
+  std::fprintf(out,
+               "{\"publications\": %ld, \"missed_deadlines\": %ld, \"lateness_median_s\": %.9g, "
+               "\"lateness_p99_s\": %.9g, \"lateness_max_s\": %.9g, \"rtf_achieved\": %.6g, \"rtf_window\": %.6g, "
+               "\"paced_wall_time_s\": %.9g, \"period_jitter_std_s\": %.9g, \"period_jitter_max_s\": %.9g,\n"
+               " \"lateness_histogram\": {\"bin_s\": %g, \"overflow\": %ld, \"bins\": [",
+               f.publications, f.missed_deadlines, f.lateness_median, f.lateness_p99, f.lateness_max, f.rtf_achieved,
+               f.rtf_window, f.paced_wall_time, f.period_jitter_std, f.period_jitter_max, LatenessHistogram::kBinWidth,
+               h.overflow());
+  bool first = true;
+  for (std::size_t b = 0; b < h.counts().size(); ++b)
+    if (h.counts()[b]) {
+      std::fprintf(out, "%s[%zu, %u]", first ? "" : ", ", b, h.counts()[b]);
+      first = false;
+    }
+  std::fprintf(out, "]}}\n");
+  std::fclose(out);
+}
+
 }  // namespace
 
 int run_node(ScenePlan& plan, const std::string& node_name, transport::Participant& participant,
@@ -201,7 +226,7 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
       // rate it reaches (it runs flat out while it is late).
       if (!keep_up_checked && pacer->elapsed() > 1.0) {
         keep_up_checked = true;
-        const RealtimeFigures f = pacer->running_figures();
+        const RealtimeFigures f = pacer->figures();
         if (f.missed_deadlines * 2 > f.publications) {
           char buf[256];
           std::snprintf(buf, sizeof buf, "cannot keep up with rtf %g: missed %ld of %ld deadlines in the first second; "
@@ -262,9 +287,10 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
       if (stepper.finished()) break;
       if (stop_requested() || check_control()) return 3;
       copy_stats(stepper.solver_stats(), beat.status());
-      if (pacer) {
-        const RealtimeFigures f = pacer->running_figures();
+      if (pacer && beat.until_next().count() == 0) {  // the figures walk the histogram: heartbeat pace only
+        const RealtimeFigures f = pacer->figures();
         beat.status().lateness_max = f.lateness_max;
+        beat.status().lateness_p99 = f.lateness_p99;
         beat.status().missed_deadlines = f.missed_deadlines;
         beat.status().rtf_window = f.rtf_window;
       }
@@ -273,17 +299,7 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
       participant.wait(std::min(beat.until_next(), std::chrono::nanoseconds(50'000'000)));
     }
     if (log) log->close();
-    if (pacer && !options.run_dir.empty()) {
-      const RealtimeFigures f = pacer->figures();
-      if (std::FILE* out = std::fopen((options.run_dir + "/" + node_name + ".realtime.json").c_str(), "w")) {
-        std::fprintf(out,
-                     "{\"publications\": %ld, \"missed_deadlines\": %ld, \"lateness_median_s\": %.9g, "
-                     "\"lateness_p99_s\": %.9g, \"lateness_max_s\": %.9g, \"rtf_achieved\": %.6g, \"rtf_window\": %.6g, \"paced_wall_time_s\": %.9g}\n",
-                     f.publications, f.missed_deadlines, f.lateness_median, f.lateness_p99, f.lateness_max, f.rtf_achieved,
-                     f.rtf_window, f.paced_wall_time);
-        std::fclose(out);
-      }
-    }
+    if (pacer && !options.run_dir.empty()) write_realtime_figures(options.run_dir + "/" + node_name + ".realtime.json", *pacer);
     writer->flush(std::chrono::seconds(10));
     if (cut_writer) cut_writer->flush(std::chrono::seconds(10));
     copy_stats(stepper.solver_stats(), beat.status());

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <cstdlib>
 
 namespace mechsim::cosim {
 
@@ -33,9 +34,16 @@ void Pacer::wait_for_deadline(std::uint64_t k) const {
 double Pacer::published(std::uint64_t k) {
   const std::int64_t now = now_ns();
   const double late = std::max<double>(0.0, static_cast<double>(now - deadline_ns(k)) * 1e-9);
-  lateness_.push_back(static_cast<float>(late));
+  histogram_.add(late);
   if (late > h_ / rtf_) ++missed_;
-  max_late_ = std::max(max_late_, late);
+  if (last_publication_ns_ != 0 && k == last_k_ + 1) {
+    const double deviation = static_cast<double>(now - last_publication_ns_) * 1e-9 - h_ / rtf_;
+    ++periods_;
+    const double delta = deviation - jitter_mean_;
+    jitter_mean_ += delta / static_cast<double>(periods_);
+    jitter_m2_ += delta * (deviation - jitter_mean_);
+    jitter_max_ = std::max(jitter_max_, std::abs(deviation));
+  }
   last_publication_ns_ = now;
   last_k_ = k;
   const double sim = static_cast<double>(k) * h_;
@@ -50,32 +58,21 @@ double Pacer::published(std::uint64_t k) {
 
 double Pacer::elapsed() const { return static_cast<double>(now_ns() - start_ns_) * 1e-9; }
 
-RealtimeFigures Pacer::running_figures() const {
+RealtimeFigures Pacer::figures() const {
   RealtimeFigures f;
-  f.publications = static_cast<long>(lateness_.size());
+  f.publications = histogram_.count();
   f.missed_deadlines = missed_;
-  f.lateness_max = max_late_;
+  f.lateness_median = histogram_.quantile(0.5);
+  f.lateness_p99 = histogram_.quantile(0.99);
+  f.lateness_max = histogram_.max();
   f.paced_wall_time = static_cast<double>(last_publication_ns_ - start_ns_) * 1e-9;
   const double wall = elapsed();
   const double sim = static_cast<double>(last_k_) * h_;
   f.rtf_achieved = wall > 0 ? sim / wall : 0.0;
   const double window_wall = static_cast<double>(now_ns() - previous_window_wall_) * 1e-9;
   f.rtf_window = window_wall > 0 ? (sim - previous_window_sim_) / window_wall : 0.0;
-  return f;
-}
-
-RealtimeFigures Pacer::figures() const {
-  RealtimeFigures f = running_figures();
-  f.publications = static_cast<long>(lateness_.size());
-  f.missed_deadlines = missed_;
-  if (!lateness_.empty()) {
-    std::vector<float> sorted = lateness_;
-    std::sort(sorted.begin(), sorted.end());
-    auto at = [&](double q) { return static_cast<double>(sorted[std::min(sorted.size() - 1, static_cast<std::size_t>(q * sorted.size()))]); };
-    f.lateness_median = at(0.5);
-    f.lateness_p99 = at(0.99);
-    f.lateness_max = sorted.back();
-  }
+  f.period_jitter_std = periods_ > 1 ? std::sqrt(jitter_m2_ / static_cast<double>(periods_ - 1)) : 0.0;
+  f.period_jitter_max = jitter_max_;
   return f;
 }
 

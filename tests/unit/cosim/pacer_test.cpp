@@ -32,3 +32,44 @@ TEST(Pacer, CountsPublicationsLaterThanOneMacroStepAsMissed) {
 
 }  // namespace
 }  // namespace mechsim::cosim
+
+namespace mechsim::cosim {
+namespace {
+
+TEST(LatenessHistogram, QuantilesAreExactToOneBin) {
+  // 1000 samples at (i + 0.5) us, i = 0..999: the exact q-quantile is the ceil(q n)-th
+  // sample; the histogram answers with the upper edge of its 1 us bin, never below the
+  // exact value and at most one bin above it.
+  LatenessHistogram h;
+  for (int i = 0; i < 1000; ++i) h.add((i + 0.5) * 1e-6);
+  EXPECT_EQ(h.count(), 1000);
+  EXPECT_EQ(h.overflow(), 0);
+  EXPECT_NEAR(h.quantile(0.5), 500e-6, 1e-12);  // the 500th sample is 499.5 us, in bin [499, 500) us
+  EXPECT_NEAR(h.quantile(0.99), 990e-6, 1e-12);
+  EXPECT_NEAR(h.max(), 999.5e-6, 1e-15);
+  EXPECT_NEAR(h.quantile(1.0), 999.5e-6, 1e-15);  // capped by the exact maximum
+}
+
+TEST(LatenessHistogram, BeyondTheLastBinTheQuantileIsTheExactMaximum) {
+  // 98 on-time publications and two 50 ms outliers: the 99th percentile lies among the
+  // outliers, beyond the 20 ms bins, so the conservative answer is the maximum.
+  LatenessHistogram h;
+  for (int i = 0; i < 98; ++i) h.add(10e-6);
+  h.add(0.050);
+  h.add(0.040);
+  EXPECT_EQ(h.overflow(), 2);
+  EXPECT_NEAR(h.quantile(0.5), 11e-6, 1e-12);
+  EXPECT_DOUBLE_EQ(h.quantile(0.99), 0.050);
+  EXPECT_DOUBLE_EQ(h.max(), 0.050);
+}
+
+TEST(LatenessHistogram, AddingSamplesNeverGrowsItsMemory) {
+  LatenessHistogram h;
+  const auto* data = h.counts().data();
+  for (int i = 0; i < 100000; ++i) h.add(i * 1e-7);
+  EXPECT_EQ(h.counts().data(), data);
+  EXPECT_EQ(h.counts().size(), LatenessHistogram::kBins);
+}
+
+}  // namespace
+}  // namespace mechsim::cosim

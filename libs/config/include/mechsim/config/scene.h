@@ -37,11 +37,24 @@ struct SolverSpec {
   double atol = 1e-9;
 };
 
+// Operating-system real-time settings of a node process (`realtime: {priority, lock_memory,
+// cpus}` scene-wide, `participants.<p>.realtime:` per participant, key by key over the
+// scene's). Applied by the node process at start in real-time mode; refused, never ignored, where
+// the process lacks the right (docs/realtime.md).
+struct ProcessRealtimeSpec {
+  int priority = 0;           // SCHED_FIFO priority 1..99; 0 = the default policy (SCHED_OTHER)
+  bool lock_memory = false;   // mlockall + pre-faulted stack and heap
+  std::vector<int> cpus;      // CPU affinity; empty = every CPU
+  std::string key_path;       // where it was written, for messages ("participants.servo.realtime")
+  bool any() const { return priority > 0 || lock_memory || !cpus.empty(); }
+};
+
 struct ParticipantSpec {
   std::string name;    // instance name, unique in the scene; prefixes its topics
   std::string type;    // node type, e.g. "cam_shaft"
   std::string vendor;  // DDS vendor of this node
   SolverSpec solver;
+  ProcessRealtimeSpec process_realtime;  // the scene's realtime settings with this participant's over them
   ConfigNode params;   // type-specific, validated by the node type
   std::string key_path;  // "participants.cam" for error messages
 };

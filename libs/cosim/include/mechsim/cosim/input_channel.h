@@ -22,8 +22,10 @@ class InputChannel {
  public:
   InputChannel(config::EdgeOrder order, config::Reconstruction reconstruction, double t0, double step);
 
-  // Stores a received sample. Samples may arrive in any order; duplicates are ignored.
-  void add(std::uint64_t step, std::vector<double> values);
+  // Stores a received sample (a copy). Samples may arrive in any order; duplicates are
+  // ignored. Allocation-free in the steady state: the map nodes of discarded samples are
+  // kept and reused (a real-time step must not allocate, docs/realtime.md).
+  void add(std::uint64_t step, const std::vector<double>& values);
   // True when the channel holds what stepping k -> k+1 needs.
   bool ready_for_step(std::uint64_t k) const;
   // True when it holds what the initial outputs (step 0) need: only Gauss-Seidel edges
@@ -58,6 +60,7 @@ class InputChannel {
   config::Reconstruction reconstruction_;
   double t0_, step_;
   std::map<std::uint64_t, std::vector<double>> samples_;
+  std::vector<std::map<std::uint64_t, std::vector<double>>::node_type> spare_;  // discarded, for reuse
   std::vector<double> initial_;
 };
 

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "mechsim/cosim/lateness_histogram.h"
+
 namespace mechsim::cosim {
 
 struct RealtimeFigures {
@@ -18,6 +20,9 @@ struct RealtimeFigures {
   double rtf_achieved = 0;       // simulated time / wall time since the start
   double rtf_window = 0;         // over the last second of wall time
   double paced_wall_time = 0;    // s from the start time (step 0 due) to the last publication
+  // Jitter of the publication period: the spread of (t_pub,k - t_pub,k-1) around the
+  // nominal H / rtf, standard deviation and largest deviation.
+  double period_jitter_std = 0, period_jitter_max = 0;  // s
 };
 
 class Pacer {
@@ -28,9 +33,10 @@ class Pacer {
   void wait_for_deadline(std::uint64_t k) const;
   // Records the publication of step k now; returns its lateness in s.
   double published(std::uint64_t k);
-  RealtimeFigures figures() const;  // sorts the record: call at the end
-  // The cheap part (no percentiles), for heartbeats.
-  RealtimeFigures running_figures() const;
+  // Every figure so far. Walks the histogram (20 000 bins): call it at heartbeat pace, not
+  // every step.
+  RealtimeFigures figures() const;
+  const LatenessHistogram& histogram() const { return histogram_; }
   // Seconds of wall time since the start.
   double elapsed() const;
   static std::int64_t now_ns();
@@ -39,10 +45,12 @@ class Pacer {
   std::int64_t deadline_ns(std::uint64_t k) const;
   std::int64_t start_ns_;
   double t0_, h_, rtf_;
-  std::vector<float> lateness_;
+  LatenessHistogram histogram_;
   long missed_ = 0;
-  double max_late_ = 0;
   std::int64_t last_publication_ns_ = 0;
+  // Welford sums of the period deviation from nominal (from the second publication on).
+  long periods_ = 0;
+  double jitter_mean_ = 0, jitter_m2_ = 0, jitter_max_ = 0;
   std::uint64_t last_k_ = 0;
   // (wall, simulated) at the start of the current and the previous one-second window
   std::int64_t window_wall_ = 0, previous_window_wall_ = 0;
