@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <memory>
 #include <optional>
+#include <thread>
 
 #include <sched.h>
 #include <stdexcept>
@@ -173,7 +174,12 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
           throw std::runtime_error("start command before this node was matched with its partners");
       }
       beat.tick();
-      if (!started) participant.wait(std::min(beat.until_next(), std::chrono::nanoseconds(20'000'000)));
+      // Not the waitset: a partner that started first may already have sent its step 0,
+      // which this loop does not take, so the waitset would return at once and this thread
+      // would spin; under SCHED_FIFO on a pinned CPU that spin starves the node's own DDS
+      // receive thread, which would deliver the start command (a livelock, seen here). A
+      // 1 ms sleep is early enough: step 0 is due 50 ms after the start command.
+      if (!started) std::this_thread::sleep_for(std::min(beat.until_next(), std::chrono::nanoseconds(1'000'000)));
     }
     beat.set_state(transport::NodeState::running);
 
@@ -244,7 +250,7 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
                                  std::to_string(stepper.time()) + " s): " + *why);
       header.step = stepper.step();
       header.t = stepper.time();
-      if (pacer) pacer->wait_for_deadline(header.step);
+      if (pacer) pacer->wait_for_deadline(header.step, rt.spin_wait ? rt.spin_limit : 0.0);
       writer->write(header, values);
       if (pacer) pace(header.step);
       if (log) log->append(header.t, stepper.outputs());
@@ -253,6 +259,8 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
     };
 
     bool initialised = false;
+    bool has_gauss_seidel_input = false;
+    for (const auto& edge : node.inputs) has_gauss_seidel_input = has_gauss_seidel_input || edge.order == config::EdgeOrder::gauss_seidel;
     // Low-latency wait: poll with sched_yield for a bounded time before blocking (waking a
     // blocked thread dominates a step's cost on these machines; the price is a busy core).
     auto spin_until_ready = [&](double limit_s) {
@@ -295,7 +303,22 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
         beat.status().rtf_window = f.rtf_window;
       }
       beat.tick();
-      if (rt.spin_wait && spin_until_ready(rt.spin_limit)) continue;
+      if (rt.spin_wait && pacer) {
+        // Paced: block until spin_limit before the awaited samples are due, then spin. A
+        // node with a Gauss-Seidel input waits for its partners' next step (due at the
+        // deadline of the step it publishes next); otherwise for samples of the step it
+        // has just published (due now).
+        const std::int64_t due = pacer->deadline_ns(stepper.step() + (initialised && has_gauss_seidel_input ? 1 : 0));
+        const std::int64_t spin_from = due - static_cast<std::int64_t>(rt.spin_limit * 1e9);
+        const std::int64_t now = Pacer::now_ns();
+        if (now < spin_from) {
+          participant.wait(std::min(beat.until_next(), std::chrono::nanoseconds(spin_from - now)));
+          continue;
+        }
+        if (spin_until_ready(std::max(rt.spin_limit, 1e-9 * static_cast<double>(due - now) + rt.spin_limit))) continue;
+      } else if (rt.spin_wait && spin_until_ready(rt.spin_limit)) {
+        continue;
+      }
       participant.wait(std::min(beat.until_next(), std::chrono::nanoseconds(50'000'000)));
     }
     if (log) log->close();

@@ -24,10 +24,13 @@ std::int64_t Pacer::deadline_ns(std::uint64_t k) const {
   return start_ns_ + static_cast<std::int64_t>(std::llround(static_cast<double>(k) * h_ / rtf_ * 1e9));
 }
 
-void Pacer::wait_for_deadline(std::uint64_t k) const {
+void Pacer::wait_for_deadline(std::uint64_t k, double spin_lead_s) const {
   const std::int64_t d = deadline_ns(k);
-  timespec ts{static_cast<time_t>(d / 1'000'000'000), static_cast<long>(d % 1'000'000'000)};
+  const std::int64_t wake = d - static_cast<std::int64_t>(spin_lead_s * 1e9);
+  timespec ts{static_cast<time_t>(wake / 1'000'000'000), static_cast<long>(wake % 1'000'000'000)};
   while (clock_nanosleep(CLOCK_REALTIME, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
+  }
+  while (spin_lead_s > 0 && now_ns() < d) {
   }
 }
 

@@ -29,8 +29,12 @@ class Pacer {
  public:
   // start_wall_ns: Unix time (CLOCK_REALTIME) of step 0.
   Pacer(std::int64_t start_wall_ns, double t0, double macro_step, double rtf);
-  // Sleeps until step k's deadline (returns at once when already late).
-  void wait_for_deadline(std::uint64_t k) const;
+  // Sleeps until step k's deadline (returns at once when already late). With spin_lead > 0
+  // it sleeps until spin_lead before the deadline and polls the clock from there: a timer
+  // wake-up on a loaded or virtual machine is tens of microseconds late, a poll is not.
+  void wait_for_deadline(std::uint64_t k, double spin_lead_s = 0.0) const;
+  // Wall time (Unix ns) step k is due.
+  std::int64_t deadline_ns(std::uint64_t k) const;
   // Records the publication of step k now; returns its lateness in s.
   double published(std::uint64_t k);
   // Every figure so far. Walks the histogram (20 000 bins): call it at heartbeat pace, not
@@ -42,7 +46,6 @@ class Pacer {
   static std::int64_t now_ns();
 
  private:
-  std::int64_t deadline_ns(std::uint64_t k) const;
   std::int64_t start_ns_;
   double t0_, h_, rtf_;
   LatenessHistogram histogram_;
