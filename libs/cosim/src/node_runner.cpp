@@ -141,7 +141,10 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
     if (!options.run_dir.empty()) {
       std::vector<std::string> columns;
       for (const auto& o : node.block->outputs()) columns.push_back(o.name);
-      log = std::make_unique<OutputLogWriter>(options.run_dir + "/" + node_name + ".outputs.bin", columns);
+      // Paced: the rows go to the disk from a thread of their own (a write can block for ms).
+      log = std::make_unique<OutputLogWriter>(options.run_dir + "/" + node_name + ".outputs.bin", columns,
+                                              scene.mode == "realtime" ? OutputLogWriter::Mode::background
+                                                                       : OutputLogWriter::Mode::direct);
     }
 
     // Ready means matched both ways with every partner (see docs/protocol.md: a match seen

@@ -1,6 +1,11 @@
 #include "mechsim/cosim/output_log.h"
 
+#include <pthread.h>
+#include <sched.h>
+
+#include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -12,24 +17,74 @@ namespace {
 constexpr const char* kMagic = "mechsim-outputs 1";
 }
 
-OutputLogWriter::OutputLogWriter(const std::string& path, const std::vector<std::string>& columns)
-    : path_(path), width_(columns.size() + 1) {
+OutputLogWriter::OutputLogWriter(const std::string& path, const std::vector<std::string>& columns, Mode mode)
+    : path_(path), width_(columns.size() + 1), mode_(mode) {
   file_ = std::fopen(path.c_str(), "wb");
   if (!file_) throw std::runtime_error(path + ": cannot create: " + std::strerror(errno));
   std::string header = std::string(kMagic) + "\nt";
   for (const auto& c : columns) header += "," + c;
   header += "\n";
   std::fwrite(header.data(), 1, header.size(), file_);
+  if (mode_ == Mode::background) {
+    ring_.assign(kRingRows * width_, 0.0);
+    writer_ = std::thread([this] { writer_loop(); });
+  }
 }
 
-OutputLogWriter::~OutputLogWriter() { close(); }
+OutputLogWriter::~OutputLogWriter() {
+  try {
+    close();
+  } catch (const std::exception&) {
+    // a destructor does not throw; close() explicitly to see the error
+  }
+}
 
 void OutputLogWriter::append(double t, std::span<const double> values) {
-  std::fwrite(&t, sizeof t, 1, file_);
-  std::fwrite(values.data(), sizeof(double), values.size(), file_);
+  if (mode_ == Mode::direct) {
+    std::fwrite(&t, sizeof t, 1, file_);
+    std::fwrite(values.data(), sizeof(double), values.size(), file_);
+    return;
+  }
+  const std::size_t head = head_.load(std::memory_order_relaxed);
+  if (head - tail_.load(std::memory_order_acquire) >= kRingRows) {
+    ++ring_full_waits_;  // the disk is 16 384 rows behind: wait rather than lose a row
+    while (head - tail_.load(std::memory_order_acquire) >= kRingRows) std::this_thread::yield();
+  }
+  double* row = ring_.data() + (head % kRingRows) * width_;
+  row[0] = t;
+  std::copy(values.begin(), values.end(), row + 1);
+  head_.store(head + 1, std::memory_order_release);
+}
+
+void OutputLogWriter::write_rows_until(std::size_t head) {
+  std::size_t tail = tail_.load(std::memory_order_relaxed);
+  while (tail < head) {
+    // Contiguous rows up to the ring's end in one fwrite.
+    const std::size_t first = tail % kRingRows;
+    const std::size_t n = std::min(head - tail, kRingRows - first);
+    std::fwrite(ring_.data() + first * width_, sizeof(double), n * width_, file_);
+    tail += n;
+    tail_.store(tail, std::memory_order_release);
+  }
+}
+
+void OutputLogWriter::writer_loop() {
+  // Not the node's real-time policy: this thread may wait for the disk.
+  sched_param normal{};
+  pthread_setschedparam(pthread_self(), SCHED_OTHER, &normal);
+  while (!stop_.load(std::memory_order_acquire)) {
+    write_rows_until(head_.load(std::memory_order_acquire));
+    std::fflush(file_);
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  write_rows_until(head_.load(std::memory_order_acquire));
 }
 
 void OutputLogWriter::close() {
+  if (writer_.joinable()) {
+    stop_.store(true, std::memory_order_release);
+    writer_.join();
+  }
   if (file_) {
     if (std::fclose(file_) != 0) {
       file_ = nullptr;

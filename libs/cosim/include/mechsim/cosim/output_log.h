@@ -6,7 +6,9 @@
 // ("t,<output>,...\n"), then rows of native little-endian doubles.
 #pragma once
 
+#include <atomic>
 #include <cstdio>
+#include <thread>
 #include <span>
 #include <string>
 #include <vector>
@@ -15,15 +17,33 @@ namespace mechsim::cosim {
 
 class OutputLogWriter {
  public:
-  OutputLogWriter(const std::string& path, const std::vector<std::string>& columns);
+  // direct: append() writes through stdio in the calling thread. background: append()
+  // copies the row into a preallocated ring that a thread of its own (SCHED_OTHER, whatever
+  // the node's policy) writes out, so that a paced node never waits for the disk in a step
+  // (a write() can block for milliseconds while the file system commits; seen here).
+  enum class Mode { direct, background };
+  OutputLogWriter(const std::string& path, const std::vector<std::string>& columns, Mode mode = Mode::direct);
   ~OutputLogWriter();
   void append(double t, std::span<const double> values);
+  // Writes what is left and closes the file (joins the writer thread). Throws on a write error.
   void close();
+  // Appends that found the ring full and waited for the writer thread (background mode).
+  long ring_full_waits() const { return ring_full_waits_; }
 
  private:
+  void write_rows_until(std::size_t head);  // writer thread: ring rows [tail, head) to the file
+  void writer_loop();
   std::FILE* file_ = nullptr;
   std::string path_;
   std::size_t width_;
+  Mode mode_;
+  // background mode: single producer (append), single consumer (the writer thread)
+  static constexpr std::size_t kRingRows = 16384;
+  std::vector<double> ring_;
+  std::atomic<std::size_t> head_{0}, tail_{0};  // rows appended / rows written, ever
+  std::atomic<bool> stop_{false};
+  std::thread writer_;
+  long ring_full_waits_ = 0;
 };
 
 struct OutputLog {
