@@ -2,7 +2,9 @@
 # Real-time benchmark (docs/realtime.md): the shipped real-time scenes paced at rtf 1 for
 # END of simulated time (default 60 s), then the highest real-time factor each sustains
 # with no missed deadline (doubling, then bisection, runs of about TRIAL_WALL s of wall time).
-#   tools/bench-realtime.sh [--end '60 s'] [--trial-wall 8] [--no-sweep] [--json FILE] [SCENE ...]
+#   tools/bench-realtime.sh [--end '60 s'] [--trial-wall 8] [--no-sweep] [--no-floor] [--json FILE] [SCENE ...]
+# First it measures the machine's own floor: cyclictest (rt-tests) at the scenes' priority,
+# 1 ms period, for the same wall time: the wake-up latency any sleeping thread sees here.
 # Default scenes: nc_slide_loop_rt cam_press_rt. Needs the scenes' rights (root, or
 # CAP_SYS_NICE + CAP_IPC_LOCK); runs on an otherwise idle machine tell the truth, runs next
 # to a build do not. Prints a table; --json writes every figure.
@@ -11,6 +13,7 @@ cd "$(dirname "$0")/.."
 end="60 s"
 trial_wall=8
 sweep=1
+floor=1
 json_out=""
 scenes=()
 while [ $# -gt 0 ]; do
@@ -18,6 +21,7 @@ while [ $# -gt 0 ]; do
     --end) end="$2"; shift 2 ;;
     --trial-wall) trial_wall="$2"; shift 2 ;;
     --no-sweep) sweep=0; shift ;;
+    --no-floor) floor=0; shift ;;
     --json) json_out="$2"; shift 2 ;;
     -h|--help) sed -n '2,9p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) scenes+=("$1"); shift ;;
@@ -44,6 +48,30 @@ print(r["missed_deadlines"], 1e3 * r["lateness_p99_s"], 1e3 * r["lateness_max_s"
 PY
 }
 
+if [ "$floor" = 1 ]; then
+  if command -v cyclictest >/dev/null; then
+    secs=$(python3 -c "print(int(float('$end'.split()[0])))")
+    cyclictest -m -p 50 -i 1000 -t 1 -D "$secs" -q --histogram=30000 --histfile="$tmp/cyclictest.hist" >/dev/null 2>&1 || true
+    python3 - "$tmp/cyclictest.hist" "$secs" <<'PY'
+import sys
+rows = [tuple(int(x) for x in l.split()[:2]) for l in open(sys.argv[1]) if l.strip() and not l.startswith("#")]
+n = sum(c for _, c in rows)
+def q(p):
+    t = 0
+    for lat, c in rows:
+        t += c
+        if t >= p * n: return lat
+mx = max((lat for lat, c in rows if c), default=0)
+over = [l for l in open(sys.argv[1]) if l.startswith("# Max Latencies")]
+print(f"machine floor (cyclictest, SCHED_FIFO 50, mlockall, 1 ms period, {sys.argv[2]} s): {n} wake-ups, "
+      f"median {q(0.5)} us, p99 {q(0.99)} us, p99.9 {q(0.999)} us, {over[0].split(':')[1].strip() if over else mx} us max, "
+      f"{sum(c for lat, c in rows if lat >= 1000)} of them >= 1 ms")
+PY
+  else
+    echo "machine floor: cyclictest not installed (apt-get install rt-tests); skipped"
+  fi
+fi
+
 results="$tmp/results.jsonl"
 : > "$results"
 printf '%-18s %8s %7s %9s %9s %10s %10s %9s\n' scene rtf missed "p99 [ms]" "max [ms]" "jit σ[ms]" "jit max" "rtf got"
@@ -57,6 +85,13 @@ r = json.load(open(sys.argv[1]))["realtime"]["nodes"]
 for n, f in r.items():
     print(f"    {n:12s} {f['publications']} publications, {f['missed_deadlines']} missed, median {1e3*f['lateness_median_s']:.3f} ms, "
           f"p99 {1e3*f['lateness_p99_s']:.3f} ms, max {1e3*f['lateness_max_s']:.3f} ms, jitter {1e3*f['period_jitter_std_s']:.3f} ms std")
+# The worst publications: the same step late on every node is one stall travelling around the ring.
+steps = {}
+for n, f in r.items():
+    for w in f.get("worst", []):
+        steps.setdefault(w["step"], []).append((n, w["lateness_s"]))
+worst = sorted(steps.items(), key=lambda kv: -max(l for _, l in kv[1]))[:5]
+print("    worst publications: " + "; ".join(f"step {k}: " + ", ".join(f"{n} {1e3*l:.2f} ms" for n, l in v) for k, v in worst))
 PY
   best=""
   if [ "$sweep" = 1 ]; then

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <set>
 
 #include "mechsim/cosim/process_realtime.h"
@@ -54,6 +55,8 @@ json realtime_summary(const config::Scene& scene, const std::vector<std::string>
     paced = std::max(paced, f.value("paced_wall_time_s", 0.0));
     jitter_std = std::max(jitter_std, f.value("period_jitter_std_s", 0.0));
     jitter_max = std::max(jitter_max, f.value("period_jitter_max_s", 0.0));
+    if (f.contains("worst"))
+      for (auto& w : f["worst"]) w["t_s"] = scene.time.start + w.value("step", 0.0) * scene.time.step;
     per_node[name] = std::move(f);
   }
   return {{"rtf_requested", scene.rtf},
@@ -136,6 +139,28 @@ void print_realtime_summary(const json& summary) {
                   name.c_str(), f.value("missed_deadlines", 0L), 1e3 * f.value("lateness_median_s", 0.0),
                   1e3 * f.value("lateness_p99_s", 0.0), 1e3 * f.value("lateness_max_s", 0.0), 1e3 * f.value("period_jitter_std_s", 0.0),
                   1e3 * f.value("period_jitter_max_s", 0.0));
+    // The worst publications of the run (several nodes late at the same step: a stall that
+    // travelled around the lock-step ring from the node that was late first).
+    std::map<std::uint64_t, std::pair<double, std::string>> worst;
+    for (const auto& [name, f] : r["nodes"].items())
+      if (f.contains("worst"))
+        for (const auto& w : f["worst"]) {
+          auto& entry = worst[w["step"].get<std::uint64_t>()];
+          entry.first = std::max(entry.first, w["lateness_s"].get<double>());
+          entry.second += (entry.second.empty() ? "" : ",") + name;
+        }
+    std::vector<std::pair<double, std::uint64_t>> ranked;
+    for (const auto& [step, e] : worst) ranked.push_back({e.first, step});
+    std::sort(ranked.rbegin(), ranked.rend());
+    std::string line;
+    for (std::size_t i = 0; i < ranked.size() && i < 4; ++i) {
+      if (ranked[i].first < 1e-3 * 0.25) break;  // only what matters against the target
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "%s%.2f ms at step %llu (%s)", line.empty() ? "" : "; ", 1e3 * ranked[i].first,
+                    static_cast<unsigned long long>(ranked[i].second), worst[ranked[i].second].second.c_str());
+      line += buf;
+    }
+    if (!line.empty()) std::printf("    worst: %s\n", line.c_str());
   }
   if (summary.contains("process_realtime") && !summary["process_realtime"].empty())
     for (const auto& [name, a] : summary["process_realtime"].items()) {

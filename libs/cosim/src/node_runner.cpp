@@ -104,7 +104,13 @@ void write_realtime_figures(const std::string& path, const Pacer& pacer) {
       std::fprintf(out, "%s[%zu, %u]", first ? "" : ", ", b, h.counts()[b]);
       first = false;
     }
-  std::fprintf(out, "]}}\n");
+  std::fprintf(out, "]},\n \"worst\": [");
+  first = true;
+  for (const Pacer::Late& l : pacer.worst()) {
+    std::fprintf(out, "%s{\"step\": %llu, \"lateness_s\": %.9g}", first ? "" : ", ", static_cast<unsigned long long>(l.step), l.lateness);
+    first = false;
+  }
+  std::fprintf(out, "]}\n");
   std::fclose(out);
 }
 

@@ -38,6 +38,8 @@ double Pacer::published(std::uint64_t k) {
   const std::int64_t now = now_ns();
   const double late = std::max<double>(0.0, static_cast<double>(now - deadline_ns(k)) * 1e-9);
   histogram_.add(late);
+  auto least = std::min_element(worst_.begin(), worst_.end(), [](const Late& a, const Late& b) { return a.lateness < b.lateness; });
+  if (late > least->lateness) *least = {k, late};
   if (late > h_ / rtf_) ++missed_;
   if (last_publication_ns_ != 0 && k == last_k_ + 1) {
     const double deviation = static_cast<double>(now - last_publication_ns_) * 1e-9 - h_ / rtf_;
@@ -60,6 +62,14 @@ double Pacer::published(std::uint64_t k) {
 }
 
 double Pacer::elapsed() const { return static_cast<double>(now_ns() - start_ns_) * 1e-9; }
+
+std::vector<Pacer::Late> Pacer::worst() const {
+  std::vector<Late> out;
+  for (const Late& l : worst_)
+    if (l.lateness > 0) out.push_back(l);
+  std::sort(out.begin(), out.end(), [](const Late& a, const Late& b) { return a.lateness > b.lateness; });
+  return out;
+}
 
 RealtimeFigures Pacer::figures() const {
   RealtimeFigures f;

@@ -5,6 +5,7 @@
 // are those of a lock-step run.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -41,6 +42,14 @@ class Pacer {
   // every step.
   RealtimeFigures figures() const;
   const LatenessHistogram& histogram() const { return histogram_; }
+  // The latest publications (step, lateness in s), worst first: to find what caused them
+  // (a step of the model, a stall of the machine: several nodes late at the same step).
+  struct Late {
+    std::uint64_t step = 0;
+    double lateness = 0;
+  };
+  static constexpr std::size_t kWorst = 8;
+  std::vector<Late> worst() const;
   // Seconds of wall time since the start.
   double elapsed() const;
   static std::int64_t now_ns();
@@ -49,6 +58,7 @@ class Pacer {
   std::int64_t start_ns_;
   double t0_, h_, rtf_;
   LatenessHistogram histogram_;
+  std::array<Late, kWorst> worst_{};  // unsorted; fixed size: no allocation per step
   long missed_ = 0;
   std::int64_t last_publication_ns_ = 0;
   // Welford sums of the period deviation from nominal (from the second publication on).
