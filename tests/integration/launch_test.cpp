@@ -137,6 +137,10 @@ TEST_F(Launch, AHungNodeIsDetectedAndEverythingStops) {
   ASSERT_FALSE(r.timed_out) << r.output;
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.output.find("node 'cam' hung"), std::string::npos) << r.output;
+  // The step it stopped at is named, once.
+  const auto first = r.output.find("(last step ");
+  EXPECT_NE(first, std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("(last step ", first + 1), std::string::npos) << r.output;
 }
 
 TEST_F(Launch, CtrlCStopsEveryProcessCleanly) {

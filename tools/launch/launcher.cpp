@@ -318,8 +318,8 @@ RunOutcome Run::run_nodes() {
       const auto& w = watch_[p.name];
       if (!p.exited && seconds_since(w.last_seen) > scene_.hang_timeout) {
         std::ostringstream why;
-        why << "node '" << p.name << "' hung: no status for " << scene_.hang_timeout << " s (last step "
-            << (w.seen ? w.last.header.step : 0) << ")";
+        // The last step is added once, by the failure report (from the node's output log).
+        why << "node '" << p.name << "' hung: no status for " << scene_.hang_timeout << " s";
         fail(out, p.name, why.str());
       }
     }
