@@ -22,6 +22,7 @@
 #include "domain_lock.h"
 #include "mechsim/cosim/output_log.h"
 #include "mechsim/record/mcap_reader.h"
+#include "npm_reader.h"
 #include "recorder.h"
 #include "run_command.h"
 
@@ -34,36 +35,6 @@ using nlohmann::json;
 const std::string kMechsim = std::string(MECHSIM_BIN_DIR) + "/mechsim";
 const std::string kCamPress = std::string(MECHSIM_SOURCE_DIR) + "/config/scenes/cam_press.yaml";
 constexpr std::uint64_t kCamPressSamples = 2001;  // steps 0..2000 of 2 s at 1 ms
-
-bool in_path(const std::string& program) {
-  std::stringstream dirs(std::getenv("PATH") ? std::getenv("PATH") : "");
-  for (std::string d; std::getline(dirs, d, ':');)
-    if (::access((fs::path(d) / program).c_str(), X_OK) == 0) return true;
-  return false;
-}
-
-// The @mcap/core reader of tests/integration/mcap_reader, installed into the build tree
-// exactly as mcap_npm_reader_test does it (same folder, same lock: installed once).
-std::string prepare_npm_reader() {
-  const fs::path src = MCAP_READER_SOURCE_DIR, work = MCAP_READER_WORK_DIR;
-  fs::create_directories(work);
-  const int lock = ::open((work / ".lock").c_str(), O_RDWR | O_CREAT, 0644);
-  if (lock < 0 || ::flock(lock, LOCK_EX) != 0) return "cannot lock " + (work / ".lock").string();
-  struct Unlock {
-    int fd;
-    ~Unlock() { ::close(fd); }
-  } unlock{lock};
-  for (const char* f : {"package.json", "package-lock.json", "read_mcap.mjs"})
-    fs::copy_file(src / f, work / f, fs::copy_options::overwrite_existing);
-  const std::string wanted = slurp((src / "package-lock.json").string());
-  const fs::path stamp = work / ".installed-package-lock.json";
-  if (fs::exists(work / "node_modules") && fs::exists(stamp) && slurp(stamp.string()) == wanted) return "";
-  const std::string log = (work / "npm-ci.log").string();
-  const std::string cmd = "cd '" + work.string() + "' && npm ci --ignore-scripts --no-audit --no-fund > '" + log + "' 2>&1";
-  if (std::system(cmd.c_str()) != 0) return "npm ci failed in " + work.string() + ":\n" + slurp(log);
-  fs::copy_file(src / "package-lock.json", stamp, fs::copy_options::overwrite_existing);
-  return "";
-}
 
 // What @mcap/core saw in `file` (read_mcap.mjs prints JSON on stdout).
 json read_with_mcap_core(const std::string& file) {
@@ -142,8 +113,8 @@ class Record : public ::testing::Test {
     return json::parse(slurp(out), nullptr, false);
   }
   void require_npm_reader() {
-    if (!in_path("node") || !in_path("npm")) GTEST_SKIP() << "node/npm not installed (Debian packages nodejs, npm)";
-    const std::string problem = prepare_npm_reader();
+    if (!testing::npm_reader::in_path("node")) GTEST_SKIP() << "node not installed (Debian packages nodejs, npm)";
+    const std::string problem = testing::npm_reader::problem();  // installed by tools/install-test-deps.sh
     ASSERT_TRUE(problem.empty()) << problem;
   }
 

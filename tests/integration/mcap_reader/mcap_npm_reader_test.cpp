@@ -3,15 +3,12 @@
 // complete files through its indexed and streaming readers, a truncated file that it must
 // call incomplete, and the same file after recover().
 //
-// node_modules: the test copies package.json, package-lock.json and read_mcap.mjs into the
-// build tree (MCAP_READER_WORK_DIR) and runs `npm ci --ignore-scripts` there when the
-// installed lock differs from the source one, under an flock so parallel ctest processes
-// install once. The source tree is never written; a fresh CI machine needs the npm
-// registry once per build tree. Without node or npm the test is skipped.
+// node_modules: tools/install-test-deps.sh (run by tools/run-tests.sh) installs the reader
+// into the build tree (MCAP_READER_WORK_DIR), pinned by package-lock.json; this test never
+// runs npm (npm_reader.h). Without node the test is skipped.
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
-#include <sys/file.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -27,6 +24,7 @@
 #include "mechsim/record/mcap_reader.h"
 #include "mechsim/record/mcap_recover.h"
 #include "mechsim/record/mcap_writer.h"
+#include "npm_reader.h"
 #include "record_test_support.h"
 
 namespace mechsim::record {
@@ -84,42 +82,6 @@ RunResult run(const std::vector<std::string>& argv, const fs::path& cwd, const f
   return r;
 }
 
-bool in_path(const std::string& program) {
-  const char* path = std::getenv("PATH");
-  if (!path) return false;
-  std::string dirs = path;
-  for (std::size_t start = 0; start <= dirs.size();) {
-    const std::size_t end = std::min(dirs.find(':', start), dirs.size());
-    const fs::path candidate = fs::path(dirs.substr(start, end - start)) / program;
-    if (::access(candidate.c_str(), X_OK) == 0) return true;
-    start = end + 1;
-  }
-  return false;
-}
-
-// Makes MCAP_READER_WORK_DIR hold read_mcap.mjs with its node_modules. Returns "" when
-// ready, else why not (a failure, not a skip: CI has the npm registry).
-std::string prepare_reader() {
-  const fs::path src = MCAP_READER_SOURCE_DIR, work = MCAP_READER_WORK_DIR;
-  fs::create_directories(work);
-  const int lock = ::open((work / ".lock").c_str(), O_RDWR | O_CREAT, 0644);
-  if (lock < 0 || ::flock(lock, LOCK_EX) != 0) return "cannot lock " + (work / ".lock").string();
-  struct Unlock {
-    int fd;
-    ~Unlock() { ::close(fd); }  // closing releases the flock
-  } unlock{lock};
-  for (const char* f : {"package.json", "package-lock.json", "read_mcap.mjs"})
-    fs::copy_file(src / f, work / f, fs::copy_options::overwrite_existing);
-  const std::string wanted = slurp(src / "package-lock.json");
-  const fs::path stamp = work / ".installed-package-lock.json";
-  if (fs::exists(work / "node_modules") && fs::exists(stamp) && slurp(stamp) == wanted) return "";
-  const RunResult r = run({"npm", "ci", "--ignore-scripts", "--no-audit", "--no-fund"}, work,
-                          work, std::chrono::seconds(300));  // under the lock: `work` is ours
-  if (r.exit_code != 0) return "npm ci failed in " + work.string() + ":\n" + r.out + r.err;
-  fs::copy_file(src / "package-lock.json", stamp, fs::copy_options::overwrite_existing);
-  return "";
-}
-
 // What read_mcap.mjs printed for `file` (its output captured next to `file`).
 json read_with_mcap_core(const std::string& file) {
   const RunResult r = run({"node", "read_mcap.mjs", file}, MCAP_READER_WORK_DIR,
@@ -144,10 +106,9 @@ json counts_by_topic(const McapReader& reader) {
 class McapNpmReader : public ::testing::TestWithParam<Compression> {
  protected:
   void SetUp() override {
-    if (!in_path("node") || !in_path("npm"))
-      GTEST_SKIP() << "node/npm not installed: the third-party MCAP reader check needs them "
-                      "(Debian packages nodejs and npm)";
-    const std::string problem = prepare_reader();
+    if (!testing::npm_reader::in_path("node"))
+      GTEST_SKIP() << "node not installed: the third-party MCAP reader check needs it (Debian packages nodejs and npm)";
+    const std::string problem = testing::npm_reader::problem();
     ASSERT_TRUE(problem.empty()) << problem;
   }
   test::ScratchDir dir_;
@@ -254,6 +215,31 @@ TEST_P(McapNpmReaderTruncated, IsReportedTruncatedAndReadsFullyAfterRecover) {
 INSTANTIATE_TEST_SUITE_P(Compressions, McapNpmReaderTruncated,
                          ::testing::Values(Compression::zstd, Compression::lz4),
                          [](const auto& info) { return compression_name(info.param); });
+
+TEST(NpmReaderSetup, AMissingInstallIsReportedAtOnceWithTheCommandToRun) {
+  // An empty folder stands for a build tree where tools/install-test-deps.sh could not
+  // reach the registry: the check names the folder and the command, runs no npm and
+  // creates nothing (no node_modules appears).
+  test::ScratchDir dir;
+  const fs::path empty = dir.file("no-reader");
+  fs::create_directories(empty);
+  const std::string why = testing::npm_reader::problem(MCAP_READER_SOURCE_DIR, empty);
+  EXPECT_NE(why.find("not installed in " + empty.string()), std::string::npos) << why;
+  EXPECT_NE(why.find("run tools/install-test-deps.sh"), std::string::npos) << why;
+  EXPECT_EQ(why.find('\n'), std::string::npos) << "one line: " << why;
+  EXPECT_TRUE(fs::is_empty(empty));
+}
+
+TEST(NpmReaderSetup, AReaderFromAnotherLockFileIsNotUsed) {
+  // Installed, but from an older lock: the tests must not run an unpinned reader.
+  test::ScratchDir dir;
+  const fs::path work = dir.file("old-reader");
+  fs::create_directories(work / "node_modules" / "@mcap" / "core");
+  fs::copy_file(fs::path(MCAP_READER_SOURCE_DIR) / "read_mcap.mjs", work / "read_mcap.mjs");
+  std::ofstream(work / ".installed-package-lock.json") << "{\"lockfileVersion\": 1}";
+  const std::string why = testing::npm_reader::problem(MCAP_READER_SOURCE_DIR, work);
+  EXPECT_NE(why.find("another package-lock.json"), std::string::npos) << why;
+}
 
 }  // namespace
 }  // namespace mechsim::record
