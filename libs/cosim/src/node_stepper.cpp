@@ -35,6 +35,7 @@ NodeStepper::NodeStepper(PlannedNode& node, const config::TimeSpec& time)
   block.initial_state(t0_, x_);
   if (node.cut) cut_side_ = std::make_unique<coupling::InterfaceSide>(*node.block, node.cut->torque_input,
                                                                       node.cut->angle_output, node.cut->levels);
+  spare_predictions_.reserve(4);
 }
 
 double NodeStepper::time() const { return t0_ + static_cast<double>(k_) * h_; }
@@ -53,24 +54,34 @@ bool NodeStepper::inputs_ready(std::uint64_t k) const {
 
 bool NodeStepper::can_step() const {
   if (!initialised_ || finished() || !inputs_ready(k_)) return false;
-  return !cut_side_ || (own_prediction_ && partner_predictions_.count(k_) > 0);
+  return !cut_side_ || (has_own_prediction_ && partner_predictions_.count(k_) > 0);
 }
 
 bool NodeStepper::prediction_due() const {
-  return cut_side_ && initialised_ && !finished() && !own_prediction_ && inputs_ready(k_);
+  return cut_side_ && initialised_ && !finished() && !has_own_prediction_ && inputs_ready(k_);
 }
 
 void NodeStepper::predict(std::vector<double>& prediction_fields) {
   if (!prediction_due()) throw std::logic_error("prediction before the step's inputs arrived");
   const std::uint64_t k = k_;
-  own_prediction_ = cut_side_->predict(*integrator_, t0_ + static_cast<double>(k + 1) * h_,
-                                       [this, k](double t, std::span<double> u) { inputs_at(t, k, u); }, assumed_torque_);
-  coupling::to_fields(*own_prediction_, prediction_fields);
+  cut_side_->predict(*integrator_, t0_ + static_cast<double>(k + 1) * h_,
+                     [this, k](double t, std::span<double> u) { inputs_at(t, k, u); }, assumed_torque_, own_prediction_);
+  has_own_prediction_ = true;
+  coupling::to_fields(own_prediction_, prediction_fields);
 }
 
 void NodeStepper::add_partner_prediction(std::uint64_t step, std::span<const double> fields) {
   if (step + 1 < k_) return;  // stale
-  partner_predictions_.emplace(step, coupling::from_fields(fields));
+  if (partner_predictions_.count(step)) return;  // a duplicate
+  if (spare_predictions_.empty()) {
+    partner_predictions_.emplace(step, coupling::from_fields(fields));
+    return;
+  }
+  auto node = std::move(spare_predictions_.back());
+  spare_predictions_.pop_back();
+  node.key() = step;
+  coupling::from_fields(fields, node.mapped());
+  partner_predictions_.insert(std::move(node));
 }
 
 void NodeStepper::initial_inputs(std::span<double> u) {
@@ -120,15 +131,18 @@ void NodeStepper::step(std::vector<double>& topic_values) {
     // Both sides solve the same system with the "+" side's prediction first: equal torques.
     const PlannedCut& cut = *node_.cut;
     const auto& partner = partner_predictions_.at(k);
-    const auto& plus = cut.twist_sign > 0 ? *own_prediction_ : partner;
-    const auto& minus = cut.twist_sign > 0 ? partner : *own_prediction_;
-    const std::vector<double> levels =
-        coupling::solve_torque_levels({cut.stiffness, cut.damping}, t_next - time(), plus, minus);
+    const auto& plus = cut.twist_sign > 0 ? own_prediction_ : partner;
+    const auto& minus = cut.twist_sign > 0 ? partner : own_prediction_;
+    std::vector<double>& levels = levels_;
+    coupling::solve_torque_levels({cut.stiffness, cut.damping}, t_next - time(), plus, minus, levels);
     cut_side_->advance(*integrator_, t_next, inputs, levels);
     assumed_torque_ = levels.back();
     end_torque_ = levels.size() > 1 ? 1.5 * levels.back() - 0.5 * levels[levels.size() - 2] : levels.back();
-    own_prediction_.reset();
-    partner_predictions_.erase(partner_predictions_.begin(), partner_predictions_.upper_bound(k));
+    has_own_prediction_ = false;
+    while (!partner_predictions_.empty() && partner_predictions_.begin()->first <= k) {
+      if (spare_predictions_.size() < 4) spare_predictions_.push_back(partner_predictions_.extract(partner_predictions_.begin()));
+      else partner_predictions_.erase(partner_predictions_.begin());
+    }
   } else {
     integrator_->mark_discontinuity();  // the reconstructed inputs start afresh each step
     integrator_->advance_to(t_next, inputs);

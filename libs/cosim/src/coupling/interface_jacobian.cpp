@@ -4,6 +4,7 @@
 #include <unsupported/Eigen/MatrixFunctions>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -13,8 +14,15 @@ namespace mechsim::cosim::coupling {
 
 std::vector<double> solve_torque_levels(const SpringDamper& law, double macro_step, const InterfacePrediction& plus,
                                         const InterfacePrediction& minus) {
+  std::vector<double> levels;
+  solve_torque_levels(law, macro_step, plus, minus, levels);
+  return levels;
+}
+
+void solve_torque_levels(const SpringDamper& law, double macro_step, const InterfacePrediction& plus,
+                         const InterfacePrediction& minus, std::vector<double>& levels) {
   const int n = plus.levels();
-  if (n < 1 || minus.levels() != n || static_cast<int>(plus.sensitivity.size()) != n ||
+  if (n < 1 || n > kMaxLevels || minus.levels() != n || static_cast<int>(plus.sensitivity.size()) != n ||
       static_cast<int>(minus.sensitivity.size()) != n)
     throw std::invalid_argument("interface-Jacobian coupling: the two sides predict " + std::to_string(n) + " and " +
                                 std::to_string(minus.levels()) + " torque levels");
@@ -25,7 +33,8 @@ std::vector<double> solve_torque_levels(const SpringDamper& law, double macro_st
   const double h = macro_step / n;
   const double a = law.stiffness / 2 + law.damping / h;  // weight of q_j
   const double b = law.stiffness / 2 - law.damping / h;  // weight of q_(j-1)
-  std::vector<double> g(n), correction(n), levels(n);
+  std::array<double, kMaxLevels> g{}, correction{};
+  levels.resize(n);
   for (int m = 0; m < n; ++m) g[m] = plus.sensitivity[m] - minus.sensitivity[m];
   // dT_j (1 - a g_1) = a (q_pred_j + sum_(i<j) g_(j-i+1) dT_i) + b q_(j-1) - T_assumed
   const double pivot = 1.0 - a * g[0];
@@ -40,7 +49,6 @@ std::vector<double> solve_torque_levels(const SpringDamper& law, double macro_st
     levels[j] = plus.assumed_torque + correction[j];
     q_previous = q_known + g[0] * correction[j];
   }
-  return levels;
 }
 
 void to_fields(const InterfacePrediction& p, std::vector<double>& fields) {
@@ -57,19 +65,21 @@ void to_fields(const InterfacePrediction& p, std::vector<double>& fields) {
 }
 
 InterfacePrediction from_fields(std::span<const double> fields) {
+  InterfacePrediction p;
+  from_fields(fields, p);
+  return p;
+}
+
+void from_fields(std::span<const double> fields, InterfacePrediction& p) {
   if (fields.size() != 3 + 2 * static_cast<std::size_t>(kMaxLevels))
     throw std::invalid_argument("interface-Jacobian coupling: a CouplingPrediction sample of the wrong size");
-  InterfacePrediction p;
   p.angle = fields[0];
   p.assumed_torque = fields[1];
   const double n = fields[2];
   if (!(n >= 1 && n <= kMaxLevels) || n != std::floor(n))
     throw std::invalid_argument("interface-Jacobian coupling: a CouplingPrediction sample with " + std::to_string(n) + " levels");
-  for (int j = 0; j < static_cast<int>(n); ++j) {
-    p.predicted.push_back(fields[3 + j]);
-    p.sensitivity.push_back(fields[3 + kMaxLevels + j]);
-  }
-  return p;
+  p.predicted.assign(fields.begin() + 3, fields.begin() + 3 + static_cast<int>(n));
+  p.sensitivity.assign(fields.begin() + 3 + kMaxLevels, fields.begin() + 3 + kMaxLevels + static_cast<int>(n));
 }
 
 InterfaceSide::InterfaceSide(models::Block& block, int torque_input, int angle_output, int levels)
@@ -82,65 +92,101 @@ InterfaceSide::InterfaceSide(models::Block& block, int torque_input, int angle_o
     if (ft == torque_input)
       throw std::invalid_argument("interface-Jacobian coupling: the angle output of " + block.type_name() +
                                   " depends directly on its torque input");
+  if (block.num_states() > kMaxStates)
+    throw std::invalid_argument("interface-Jacobian coupling: " + block.type_name() + " has " +
+                                std::to_string(block.num_states()) + " states, at most " + std::to_string(kMaxStates) +
+                                " are supported on a cut");
   u_.assign(block.num_inputs(), 0.0);
   y_.assign(block.num_outputs(), 0.0);
+  x0_.reserve(block.num_states());
+  xp_.reserve(block.num_states());
+  up_.reserve(block.num_inputs());
+  f_plus_.assign(block.num_states(), 0.0);
+  f_minus_.assign(block.num_states(), 0.0);
+  y_plus_ = y_;
+  y_minus_ = y_;
 }
 
 double InterfaceSide::sub_instant(double t_start, double t_end, int j) const {
   return j == levels_ ? t_end : t_start + (t_end - t_start) * j / levels_;
 }
 
-std::vector<double> InterfaceSide::sensitivity(double t, std::span<const double> x, std::span<const double> u,
-                                               double h) const {
+void InterfaceSide::sensitivity(double t, std::span<const double> x, std::span<const double> u, double h,
+                                std::vector<double>& s) {
   const int n = block_.num_states();
-  std::vector<double> s(levels_, 0.0);
-  if (n == 0) return s;
+  s.assign(levels_, 0.0);
+  if (n == 0) return;
+  // Fixed capacity, dynamic size: the matrices live on the stack (no allocation per step).
+  using Matrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxStates + 1, kMaxStates + 1>;
+  using Vector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxStates + 1, 1>;
+  using RowVector = Eigen::Matrix<double, 1, Eigen::Dynamic, Eigen::RowMajor, 1, kMaxStates>;
   // Central differences of the derivatives (exact for a linear block up to rounding).
-  Eigen::MatrixXd augmented = Eigen::MatrixXd::Zero(n + 1, n + 1);  // [[A, b], [0, 0]]
-  Eigen::RowVectorXd c = Eigen::RowVectorXd::Zero(n);               // d angle / dx
-  std::vector<double> xp(x.begin(), x.end()), up(u.begin(), u.end()), f_plus(n), f_minus(n), y_plus(y_), y_minus(y_);
+  Matrix augmented = Matrix::Zero(n + 1, n + 1);  // [[A, b], [0, 0]]
+  RowVector c = RowVector::Zero(n);               // d angle / dx
+  xp_.assign(x.begin(), x.end());
+  up_.assign(u.begin(), u.end());
   for (int i = 0; i <= n; ++i) {
-    double& v = i < n ? xp[i] : up[torque_input_];
+    double& v = i < n ? xp_[i] : up_[torque_input_];
     const double saved = v;
     const double delta = 1e-6 * std::max(1.0, std::abs(saved));
     v = saved + delta;
-    block_.derivatives(t, xp, up, f_plus);
-    if (i < n) block_.calc_outputs(t, xp, up, y_plus);
+    block_.derivatives(t, xp_, up_, f_plus_);
+    if (i < n) block_.calc_outputs(t, xp_, up_, y_plus_);
     v = saved - delta;
-    block_.derivatives(t, xp, up, f_minus);
-    if (i < n) block_.calc_outputs(t, xp, up, y_minus);
+    block_.derivatives(t, xp_, up_, f_minus_);
+    if (i < n) block_.calc_outputs(t, xp_, up_, y_minus_);
     v = saved;
-    for (int r = 0; r < n; ++r) augmented(r, i) = (f_plus[r] - f_minus[r]) / (2 * delta);
-    if (i < n) c(i) = (y_plus[angle_output_] - y_minus[angle_output_]) / (2 * delta);
+    for (int r = 0; r < n; ++r) augmented(r, i) = (f_plus_[r] - f_minus_[r]) / (2 * delta);
+    if (i < n) c(i) = (y_plus_[angle_output_] - y_minus_[angle_output_]) / (2 * delta);
   }
   // exp([[A, b], [0, 0]] h) = [[Φ, Γ], [0, 1]]: Φ = e^(Ah), Γ = ∫0^h e^(As) ds b.
-  const Eigen::MatrixXd e = (augmented * h).exp();
-  const Eigen::MatrixXd phi = e.topLeftCorner(n, n);
-  Eigen::VectorXd response = e.topRightCorner(n, 1);  // state at t + h after a unit torque on [t, t + h]
+  const Matrix scaled = augmented * h;
+  const Matrix e = scaled.exp();
+  const Matrix phi = e.topLeftCorner(n, n);
+  Vector response = e.topRightCorner(n, 1);  // state at t + h after a unit torque on [t, t + h]
+  Vector next(n);
   for (int j = 0; j < levels_; ++j) {
     s[j] = c * response;
-    response = phi * response;
+    next.noalias() = phi * response;
+    response = next;
   }
-  return s;
 }
 
 InterfacePrediction InterfaceSide::predict(solve::BlockIntegrator& integrator, double t_end,
                                            const solve::InputFunction& inputs, double assumed_torque) {
-  const double t0 = integrator.time();
-  const std::vector<double> x0(integrator.state().begin(), integrator.state().end());
-  const std::vector<double> discrete = block_.save_discrete_state();
-  auto with_torque = [&](double t, std::span<double> u) {
-    inputs(t, u);
-    u[torque_input_] = assumed_torque;
-  };
   InterfacePrediction p;
+  predict(integrator, t_end, inputs, assumed_torque, p);
+  return p;
+}
+
+namespace {
+// The block's inputs with the torque input overwritten: what a step integrates with. Passed
+// to std::function as one pointer, which it stores without allocating.
+struct InputsWithTorque {
+  const solve::InputFunction* inputs;
+  int torque_input;
+  double torque;
+  void operator()(double t, std::span<double> u) const {
+    (*inputs)(t, u);
+    u[torque_input] = torque;
+  }
+};
+}  // namespace
+
+void InterfaceSide::predict(solve::BlockIntegrator& integrator, double t_end, const solve::InputFunction& inputs,
+                            double assumed_torque, InterfacePrediction& p) {
+  const double t0 = integrator.time();
+  x0_.assign(integrator.state().begin(), integrator.state().end());
+  discrete_ = block_.save_discrete_state();
+  const InputsWithTorque with_torque{&inputs, torque_input_, assumed_torque};
   p.assumed_torque = assumed_torque;
   with_torque(t0, u_);
-  block_.calc_outputs(t0, x0, u_, y_);
+  block_.calc_outputs(t0, x0_, u_, y_);
   p.angle = y_[angle_output_];
-  p.sensitivity = sensitivity(t0, x0, u_, (t_end - t0) / levels_);
-  const solve::InputFunction f = with_torque;
+  sensitivity(t0, x0_, u_, (t_end - t0) / levels_, p.sensitivity);
+  const solve::InputFunction f = [w = &with_torque](double t, std::span<double> u) { (*w)(t, u); };
   integrator.mark_discontinuity();
+  p.predicted.clear();
   for (int j = 1; j <= levels_; ++j) {
     const double t = sub_instant(t0, t_end, j);
     integrator.advance_to(t, f);
@@ -149,11 +195,10 @@ InterfacePrediction InterfaceSide::predict(solve::BlockIntegrator& integrator, d
     p.predicted.push_back(y_[angle_output_]);
   }
   // Back to the start: the prediction must leave no trace (state, sampled part, events).
-  integrator.reset_state(t0, x0);
-  block_.restore_discrete_state(discrete);
+  integrator.reset_state(t0, x0_);
+  block_.restore_discrete_state(discrete_);
   integrator.take_events();
   block_.take_event_log();
-  return p;
 }
 
 void InterfaceSide::advance(solve::BlockIntegrator& integrator, double t_end, const solve::InputFunction& inputs,
@@ -161,14 +206,13 @@ void InterfaceSide::advance(solve::BlockIntegrator& integrator, double t_end, co
   if (static_cast<int>(levels.size()) != levels_)
     throw std::invalid_argument("interface-Jacobian coupling: wrong number of torque levels");
   const double t0 = integrator.time();
+  InputsWithTorque with_torque{&inputs, torque_input_, 0.0};
+  const solve::InputFunction f = [w = &with_torque](double t, std::span<double> u) { (*w)(t, u); };
   for (int j = 1; j <= levels_; ++j) {
-    const double torque = levels[j - 1];
+    with_torque.torque = levels[j - 1];
     // The torque jumps at each sub-instant: the solver restarts there.
-    if (j == 1 || torque != levels[j - 2]) integrator.mark_discontinuity();
-    integrator.advance_to(sub_instant(t0, t_end, j), [&](double t, std::span<double> u) {
-      inputs(t, u);
-      u[torque_input_] = torque;
-    });
+    if (j == 1 || with_torque.torque != levels[j - 2]) integrator.mark_discontinuity();
+    integrator.advance_to(sub_instant(t0, t_end, j), f);
   }
 }
 

@@ -138,7 +138,7 @@ SlipPoint slip_at(double xi, double s, double z) {
   return p;
 }
 
-BeltShape shape_from(double s, double z, double rf, bool closing_governed, const LinkGeometry& g) {
+BeltShape shape_scalars_from(double s, double z, double rf, bool closing_governed, const LinkGeometry& g) {
   BeltShape b;
   b.s = s;
   b.z = z;
@@ -163,6 +163,11 @@ BeltShape shape_from(double s, double z, double rf, bool closing_governed, const
   b.theta_D = (b.tau_D + b.tau_F) / 2.0;
   b.theta_C = (b.tau_C + b.tau_F) / 2.0;
   b.psi = b.gamma_Fd - b.theta_D - b.theta_C;
+  return b;
+}
+
+BeltShape shape_from(double s, double z, double rf, bool closing_governed, const LinkGeometry& g) {
+  BeltShape b = shape_scalars_from(s, z, rf, closing_governed, g);
   // Slip field of the split belt at the disc-contact links, ξ_j = −γ_D,d/2 + (j−1)τ_D.
   for (int j = 1; j <= b.n_D; ++j) {
     const double xi = -b.gamma_Dd / 2.0 + (j - 1) * b.tau_D;
@@ -257,15 +262,25 @@ bool BeltShapeCache::tabulated(double s) const {
   return !table_s_.empty() && s >= table_s_.front() && s <= table_s_.back();
 }
 
-BeltShape BeltShapeCache::at(double s) {
-  if (!tabulated(s)) return exact(s);
+BeltShapeCache::Interpolated BeltShapeCache::interpolate(double s) const {
   const auto up = std::upper_bound(table_s_.begin(), table_s_.end(), s);
   std::size_t k = up == table_s_.begin() ? 0 : static_cast<std::size_t>(up - table_s_.begin()) - 1;
   if (k + 1 >= table_s_.size()) k = table_s_.size() - 2;
   const double w = (s - table_s_[k]) / (table_s_[k + 1] - table_s_[k]);
-  const double z = table_z_[k] + w * (table_z_[k + 1] - table_z_[k]);
-  const double rf = table_rf_[k] + w * (table_rf_[k + 1] - table_rf_[k]);
-  return shape_from(s, z, rf, table_governed_[k] && table_governed_[k + 1], g_);
+  return {table_z_[k] + w * (table_z_[k + 1] - table_z_[k]), table_rf_[k] + w * (table_rf_[k + 1] - table_rf_[k]),
+          table_governed_[k] && table_governed_[k + 1]};
+}
+
+BeltShape BeltShapeCache::scalars_at(double s) {
+  if (!tabulated(s)) return exact(s);
+  const Interpolated i = interpolate(s);
+  return shape_scalars_from(s, i.z, i.rf, i.closing_governed, g_);
+}
+
+BeltShape BeltShapeCache::at(double s) {
+  if (!tabulated(s)) return exact(s);
+  const Interpolated i = interpolate(s);
+  return shape_from(s, i.z, i.rf, i.closing_governed, g_);
 }
 
 TransitionKinematics transition_kinematics(double s, double z, const LinkGeometry& g, double tau_F, int n,

@@ -215,7 +215,7 @@ CvtResult CvtBlock::table_belt(double s, double w, double T_C) const {
   const CvtParams& c = p_.cvt;
   CvtResult r;
   r.level = p_.level;
-  const BeltShape shape = model_.shape(s);
+  const BeltShape shape = model_.shape_scalars(s);
   r.s = s;
   r.ratio = shape.ratio();
   r.r_D = c.r_C * shape.r_D();
@@ -326,8 +326,8 @@ CvtBlock::Solution CvtBlock::solve(double t, std::span<const double> x, std::spa
   const double JD = p_.J_D + J_L;
   const double h = 1e-5;  // i'(s) by central differences on the tabulated shapes
   const double s_lo = std::max(s - h, p_.s_table_min), s_hi = std::min(s + h, p_.s_table_max);
-  const double i = model_.shape(s).ratio();
-  sol.di_ds = (model_.shape(s_hi).ratio() - model_.shape(s_lo).ratio()) / (s_hi - s_lo);
+  const double i = model_.shape_scalars(s).ratio();
+  sol.di_ds = (model_.shape_scalars(s_hi).ratio() - model_.shape_scalars(s_lo).ratio()) / (s_hi - s_lo);
   sol.T_M = p_.stall_torque * (1.0 - w / p_.no_load_speed);
 
   // Fixed point on T_C from the quasi-static guess (losses and inertia torque are small

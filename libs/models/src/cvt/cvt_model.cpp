@@ -228,12 +228,16 @@ void CvtModel::tabulate_shapes(double s_lo, double s_hi, int points) {
   }
 }
 
-BeltShape CvtModel::shape(double s) {
+BeltShape CvtModel::shape(double s) { return checked_shape(s, false); }
+
+BeltShape CvtModel::shape_scalars(double s) { return checked_shape(s, true); }
+
+BeltShape CvtModel::checked_shape(double s, bool scalars_only) {
   if (!std::isfinite(s)) throw CvtInputError("ratio setting s is not a finite number");
   if (!(s > 0.0)) throw CvtInputError("ratio setting s must be > 0 (disc axis offset), got " + std::to_string(s) + " m");
   BeltShape b;
   try {
-    b = shapes_.at(s / p_.r_C);
+    b = scalars_only ? shapes_.scalars_at(s / p_.r_C) : shapes_.at(s / p_.r_C);
   } catch (const std::invalid_argument& e) {
     throw CvtInputError("ratio setting s = " + std::to_string(s * 1e3) + " mm is outside the geometric range: " + e.what());
   }

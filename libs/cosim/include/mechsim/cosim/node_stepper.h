@@ -72,8 +72,12 @@ class NodeStepper {
   // Interface-Jacobian cut: this side, its prediction for step k_ (if made), the partner's
   // predictions by step, and the torque the next prediction assumes (the last solved level).
   std::unique_ptr<coupling::InterfaceSide> cut_side_;
-  std::optional<coupling::InterfacePrediction> own_prediction_;
+  coupling::InterfacePrediction own_prediction_;
+  bool has_own_prediction_ = false;
   std::map<std::uint64_t, coupling::InterfacePrediction> partner_predictions_;
+  // Map nodes of used partner predictions, kept for reuse (no allocation per step).
+  std::vector<std::map<std::uint64_t, coupling::InterfacePrediction>::node_type> spare_predictions_;
+  std::vector<double> levels_;
   double assumed_torque_ = 0.0, end_torque_ = 0.0;
   double t0_, h_;
   std::uint64_t n_steps_;

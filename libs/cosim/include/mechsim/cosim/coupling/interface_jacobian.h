@@ -34,6 +34,9 @@ namespace mechsim::cosim::coupling {
 
 // Most torque levels per macro step the CouplingPrediction topic carries (idl/coupling.idl).
 inline constexpr int kMaxLevels = 16;
+// Most states of a block on a cut: the linearisation works on fixed-capacity matrices
+// (kMaxStates + 1 square, on the stack) so that it never allocates.
+inline constexpr int kMaxStates = 15;
 
 struct SpringDamper {
   double stiffness = 0.0;  // C [N m/rad]
@@ -54,10 +57,15 @@ struct InterfacePrediction {
 // when the two disagree on N or on the assumed torque (they must, bit for bit).
 std::vector<double> solve_torque_levels(const SpringDamper& law, double macro_step, const InterfacePrediction& plus,
                                         const InterfacePrediction& minus);
+// The same into `levels` (resized to N; no allocation once it has the capacity): the form
+// a node's step uses.
+void solve_torque_levels(const SpringDamper& law, double macro_step, const InterfacePrediction& plus,
+                         const InterfacePrediction& minus, std::vector<double>& levels);
 
 // The CouplingPrediction fields (transport/topic_types.cpp order) and back.
 void to_fields(const InterfacePrediction& p, std::vector<double>& fields);
 InterfacePrediction from_fields(std::span<const double> fields);
+void from_fields(std::span<const double> fields, InterfacePrediction& out);  // reuses out's buffers
 
 // One side of the cut: its block with a torque input and an angle output. The block's
 // torque input receives T as it is (the NC motor's load_torque, the spindle's drive_torque).
@@ -71,6 +79,9 @@ class InterfaceSide {
   // `inputs` (its torque input is overwritten). Leaves the integrator at its start state.
   InterfacePrediction predict(solve::BlockIntegrator& integrator, double t_end, const solve::InputFunction& inputs,
                               double assumed_torque);
+  // The same into `out`, reusing its buffers: allocation-free in a node's steady state.
+  void predict(solve::BlockIntegrator& integrator, double t_end, const solve::InputFunction& inputs, double assumed_torque,
+               InterfacePrediction& out);
   // Integrates the step with the solved levels (piecewise constant, a restart at each
   // sub-instant where the torque jumps).
   void advance(solve::BlockIntegrator& integrator, double t_end, const solve::InputFunction& inputs,
@@ -81,12 +92,14 @@ class InterfaceSide {
 
  private:
   double sub_instant(double t_start, double t_end, int j) const;
-  // Linearisation at (t, x, u): s_j for j = 1..N, over sub-intervals of length h.
-  std::vector<double> sensitivity(double t, std::span<const double> x, std::span<const double> u, double h) const;
+  // Linearisation at (t, x, u): s_j for j = 1..N, over sub-intervals of length h, into s.
+  void sensitivity(double t, std::span<const double> x, std::span<const double> u, double h, std::vector<double>& s);
 
   models::Block& block_;
   int torque_input_, angle_output_, levels_;
   std::vector<double> u_, y_;
+  // Buffers of predict() and sensitivity(), sized once: a step must not allocate.
+  std::vector<double> x0_, discrete_, xp_, up_, f_plus_, f_minus_, y_plus_, y_minus_;
 };
 
 }  // namespace mechsim::cosim::coupling

@@ -69,6 +69,8 @@ SlipPoint slip_at(double xi, double s, double z);
 BeltShape solve_belt_shape(double s_tilde, const LinkGeometry& g, int acc = 2);
 // Completes a shape from s̃, z̃, r̃_F (angles, discretisation, slip field): no search.
 BeltShape shape_from(double s_tilde, double z, double rf, bool closing_governed, const LinkGeometry& g);
+// The same without the per-link fields (they stay empty): what a time step needs.
+BeltShape shape_scalars_from(double s_tilde, double z, double rf, bool closing_governed, const LinkGeometry& g);
 
 // Shapes over s, searched once. `exact(s)` memoises the search per s; after `tabulate`, `at(s)`
 // inside the table interpolates z̃ and r̃_F linearly between tabulated searches and derives
@@ -81,8 +83,16 @@ class BeltShapeCache {
   void tabulate(double s_lo, double s_hi, int points);
   bool tabulated(double s_tilde) const;
   BeltShape at(double s_tilde);  // table if tabulated there, else exact
+  // The same without the per-link fields (xi, r_su, slip, eps): no allocation where
+  // tabulated, for the ratio and the link counts in a time step. Outside the table: exact().
+  BeltShape scalars_at(double s_tilde);
 
  private:
+  struct Interpolated {
+    double z, rf;
+    bool closing_governed;
+  };
+  Interpolated interpolate(double s_tilde) const;  // linear in the table; requires tabulated()
   LinkGeometry g_;
   int acc_;
   std::map<double, BeltShape> exact_;

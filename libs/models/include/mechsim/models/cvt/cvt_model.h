@@ -131,6 +131,9 @@ class CvtModel {
   void tabulate_shapes(double s_lo, double s_hi, int points);
   // The belt shape at s [m] (cached). Throws CvtInputError outside the geometric range.
   BeltShape shape(double s);
+  // The same without the per-link fields (allocation-free where tabulated): ratio, link
+  // counts and angles, for a time step.
+  BeltShape shape_scalars(double s);
 
   // The operating point. Throws CvtInputError on bad input; states outside the model are
   // flagged in the result.
@@ -140,6 +143,7 @@ class CvtModel {
   BearingLoads bearing_losses(bool primary, double r, double omega, double F_K, double T_over_r) const;
 
  private:
+  BeltShape checked_shape(double s, bool scalars_only);
   CvtResult evaluate_tc(const CvtOperatingPoint& op, double T_C, double v_K);
   void solve_l1(CvtResult& r, const BeltShape& b, double v_K);
   void solve_l0(CvtResult& r, const BeltShape& b, double v_K);
