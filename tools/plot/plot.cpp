@@ -131,7 +131,8 @@ bool write_script_body(const Figure& figure, const fs::path& dir, std::string* b
                        std::string* why) {
   std::ostringstream gp;
   gp << "set grid\n";
-  gp << "set key opaque\n";  // the legend box hides the curves under it, not vice versa
+  // The legend below the plot area, never over a curve.
+  gp << "set key below\n";
   gp << "set multiplot layout " << figure.panels.size() << ",1";
   if (!figure.title.empty()) gp << " title " << gp_string(figure.title);
   gp << "\n";

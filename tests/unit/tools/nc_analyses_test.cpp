@@ -291,6 +291,12 @@ TEST(SlideModes, DiameterSweepContainsTheNominalCase) {
   // The sweep's chain has 256 elements, the convergence study's finest 1024: O(h²) puts the
   // coarser one 15/16 of its own error, about 6e-6, below (see the convergence list).
   EXPECT_NEAR(d(nominal["f0_model3_converged_hz"]), d(r["f0_model3_converged_hz"]), 2e-5 * d(r["f0_model3_converged_hz"]));
+  // Only the spindle changes: the coupling's stand-in piece keeps the nominal equivalent
+  // length at every diameter, and f0 rises as the spindle thickens (spec §2).
+  for (std::size_t i = 0; i < sweep.size(); ++i) {
+    EXPECT_NEAR(d(sweep[i]["coupling_equivalent_length_mm"]), d(r["derived"]["coupling_equivalent_length_mm"]), 1e-9);
+    if (i > 0) EXPECT_GT(d(sweep[i]["f0_model3_converged_hz"]), d(sweep[i - 1]["f0_model3_converged_hz"]));
+  }
 }
 
 // In a loop scene the coupling spring belongs to the connection: slide-modes uses it, and a

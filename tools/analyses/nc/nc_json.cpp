@@ -198,7 +198,8 @@ json slide_modes_json(const SlideModesResult& r) {
                          {"f0_model1_hz", p.model1_hz},
                          {"f0_model2_hz", {p.model2.first_hz, p.model2.second_hz}},
                          {"f0_model3_hz", p.model3_hz},
-                         {"f0_model3_converged_hz", p.model3_converged_hz}});
+                         {"f0_model3_converged_hz", p.model3_converged_hz},
+                         {"coupling_equivalent_length_mm", p.coupling_equivalent_length * 1e3}});
   j["f0_vs_diameter"] = diameters;
   return j;
 }

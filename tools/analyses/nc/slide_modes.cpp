@@ -75,11 +75,12 @@ SlideModesResult analyse_slide_modes(const config::Scene& scene, std::vector<std
 
   const int diameters = r.settings.diameter_points;
   for (int i = 0; i < diameters; ++i) {
-    nc::SlideDriveData d = data;
-    d.spindle_diameter =
-        r.settings.diameter_from + (r.settings.diameter_to - r.settings.diameter_from) * i / (diameters - 1);
+    // Only the spindle changes: the coupling keeps its stand-in piece (spec §2, model 3).
+    const nc::SlideDriveData d = nc::with_spindle_diameter(
+        data, r.settings.diameter_from + (r.settings.diameter_to - r.settings.diameter_from) * i / (diameters - 1));
     r.f0_vs_diameter.push_back({d.spindle_diameter, nc::two_inertia_frequency_hz(d), nc::grounded_chain_frequencies_hz(d),
-                                model3.ritz_hz(d, r.slide_position), model3.converged_hz(d, r.slide_position)});
+                                model3.ritz_hz(d, r.slide_position), model3.converged_hz(d, r.slide_position),
+                                d.coupling_equivalent_length()});
   }
   return r;
 }

@@ -33,6 +33,7 @@ struct DiameterPoint {
   models::nc::GroundedChainFrequencies model2;
   double model3_hz;            // at the analysed slide position, settings.ritz_shapes shapes
   double model3_converged_hz;  // FE chain, settings.sweep_fe_elements elements
+  double coupling_equivalent_length;  // the coupling's stand-in piece of model 3 [m]: the same at every d
 };
 
 struct SlideModesResult {

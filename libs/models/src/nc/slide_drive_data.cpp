@@ -14,9 +14,13 @@ SlideDriveData SlideDriveData::report_cnc200() {
   return data;
 }
 
-double SlideDriveData::polar_moment() const {
-  const double d2 = spindle_diameter * spindle_diameter;
-  return pi * d2 * d2 / 32;
+namespace {
+double circle_polar_moment(double d) { return pi * d * d * d * d / 32; }
+}  // namespace
+
+double SlideDriveData::polar_moment() const { return circle_polar_moment(spindle_diameter); }
+double SlideDriveData::coupling_piece_polar_moment() const {
+  return circle_polar_moment(coupling_piece_diameter.value_or(spindle_diameter));
 }
 double SlideDriveData::spindle_inertia() const { return density * polar_moment() * spindle_length; }
 double SlideDriveData::spindle_stiffness() const { return shear_modulus * polar_moment() / spindle_length; }
@@ -27,7 +31,7 @@ double SlideDriveData::slide_inertia() const {
 }
 double SlideDriveData::metres_per_radian() const { return lead / (2 * pi); }
 double SlideDriveData::coupling_equivalent_length() const {
-  return shear_modulus * polar_moment() / coupling_stiffness;
+  return shear_modulus * coupling_piece_polar_moment() / coupling_stiffness;
 }
 
 }  // namespace mechsim::models::nc

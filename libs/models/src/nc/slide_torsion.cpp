@@ -40,10 +40,20 @@ GroundedChainFrequencies grounded_chain_frequencies_hz(const SlideDriveData& dat
   return {omega(0) / two_pi, omega(1) / two_pi};
 }
 
-UniformShaft equivalent_shaft(const SlideDriveData& data) {
-  const double polar = data.polar_moment();
-  return {data.coupling_equivalent_length() + data.spindle_length, data.shear_modulus * polar,
-          data.density * polar};
+SteppedShaft equivalent_shaft(const SlideDriveData& data) {
+  const double polar = data.polar_moment(), piece = data.coupling_piece_polar_moment();
+  if (piece == polar)  // the coupling's piece is of this spindle: one uniform shaft
+    return UniformShaft{data.coupling_equivalent_length() + data.spindle_length, data.shear_modulus * polar,
+                        data.density * polar};
+  return SteppedShaft({{data.coupling_equivalent_length(), data.shear_modulus * piece, data.density * piece},
+                       {data.spindle_length, data.shear_modulus * polar, data.density * polar}});
+}
+
+SlideDriveData with_spindle_diameter(const SlideDriveData& data, double diameter) {
+  SlideDriveData varied = data;
+  varied.coupling_piece_diameter = data.coupling_piece_diameter.value_or(data.spindle_diameter);
+  varied.spindle_diameter = diameter;
+  return varied;
 }
 
 std::vector<LumpedInertia> equivalent_shaft_lumps(const SlideDriveData& data, double slide_position,
@@ -85,8 +95,7 @@ std::vector<DiameterSweepPoint> frequencies_vs_diameter(const SlideDriveData& da
                                                         double slide_position, int ritz_shapes) {
   std::vector<DiameterSweepPoint> sweep;
   for (double d : diameters) {
-    SlideDriveData varied = data;
-    varied.spindle_diameter = d;
+    const SlideDriveData varied = with_spindle_diameter(data, d);
     const auto chain = grounded_chain_frequencies_hz(varied);
     sweep.push_back({d, two_inertia_frequency_hz(varied), chain.first_hz, chain.second_hz,
                      continuous_shaft_frequency_hz(varied, slide_position, ritz_shapes)});

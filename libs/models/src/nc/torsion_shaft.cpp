@@ -9,12 +9,29 @@ namespace mechsim::models::nc {
 
 namespace {
 
-void check_shaft(const UniformShaft& shaft, const std::vector<LumpedInertia>& lumps) {
-  if (!(shaft.length > 0 && shaft.torsional_rigidity > 0 && shaft.inertia_per_length > 0))
-    throw std::invalid_argument("UniformShaft: length, rigidity and inertia per length must be > 0");
+void check_shaft(const SteppedShaft& shaft, const std::vector<LumpedInertia>& lumps) {
+  if (shaft.segments.empty()) throw std::invalid_argument("SteppedShaft: no segment");
+  for (const auto& seg : shaft.segments)
+    if (!(seg.length > 0 && seg.torsional_rigidity > 0 && seg.inertia_per_length > 0))
+      throw std::invalid_argument("UniformShaft: length, rigidity and inertia per length must be > 0");
   for (const auto& lump : lumps)
-    if (lump.position < 0 || lump.position > shaft.length || lump.inertia < 0)
+    if (lump.position < 0 || lump.position > shaft.length() || lump.inertia < 0)
       throw std::invalid_argument("LumpedInertia: position outside the shaft or negative inertia");
+}
+
+// ∫ cos(a s) cos(b s) ds and ∫ sin(a s) sin(b s) ds over [s0, s1], a = mπ/L, b = nπ/L.
+double cos_cos(int m, int n, double L, double s0, double s1) {
+  const double a = m * std::numbers::pi / L, b = n * std::numbers::pi / L;
+  if (m == n) return m == 0 ? s1 - s0 : (s1 - s0) / 2 + (std::sin(2 * a * s1) - std::sin(2 * a * s0)) / (4 * a);
+  auto f = [&](double s) { return std::sin((a - b) * s) / (2 * (a - b)) + std::sin((a + b) * s) / (2 * (a + b)); };
+  return f(s1) - f(s0);
+}
+double sin_sin(int m, int n, double L, double s0, double s1) {
+  if (m == 0 || n == 0) return 0.0;
+  const double a = m * std::numbers::pi / L, b = n * std::numbers::pi / L;
+  if (m == n) return (s1 - s0) / 2 - (std::sin(2 * a * s1) - std::sin(2 * a * s0)) / (4 * a);
+  auto f = [&](double s) { return std::sin((a - b) * s) / (2 * (a - b)) - std::sin((a + b) * s) / (2 * (a + b)); };
+  return f(s1) - f(s0);
 }
 
 Eigen::VectorXd to_hz(const Eigen::VectorXd& omega_squared) {
@@ -28,17 +45,39 @@ double cosine_shape(int n, double s, double length) {
   return std::cos(n * std::numbers::pi * s / length);
 }
 
-RitzMatrices cosine_ritz_matrices(const UniformShaft& shaft, const std::vector<LumpedInertia>& lumps,
+double SteppedShaft::length() const {
+  double L = 0;
+  for (const auto& seg : segments) L += seg.length;
+  return L;
+}
+
+RitzMatrices cosine_ritz_matrices(const SteppedShaft& shaft, const std::vector<LumpedInertia>& lumps,
                                   int num_shapes) {
   check_shaft(shaft, lumps);
   if (num_shapes < 1) throw std::invalid_argument("cosine_ritz_matrices: num_shapes must be >= 1");
-  const double L = shaft.length;
+  const double L = shaft.length();
   RitzMatrices r{Eigen::MatrixXd::Zero(num_shapes, num_shapes), Eigen::MatrixXd::Zero(num_shapes, num_shapes)};
-  // The cosines are orthogonal on [0, L]: ∫cos² = L (n = 0) or L/2; ∫(φn')² = (nπ/L)² L/2.
-  for (int n = 0; n < num_shapes; ++n) {
-    r.mass(n, n) = shaft.inertia_per_length * (n == 0 ? L : L / 2);
-    const double wave_number = n * std::numbers::pi / L;
-    r.stiffness(n, n) = shaft.torsional_rigidity * wave_number * wave_number * L / 2;
+  if (shaft.segments.size() == 1) {
+    // The cosines are orthogonal on [0, L]: ∫cos² = L (n = 0) or L/2; ∫(φn')² = (nπ/L)² L/2.
+    const UniformShaft& u = shaft.segments.front();
+    for (int n = 0; n < num_shapes; ++n) {
+      r.mass(n, n) = u.inertia_per_length * (n == 0 ? L : L / 2);
+      const double wave_number = n * std::numbers::pi / L;
+      r.stiffness(n, n) = u.torsional_rigidity * wave_number * wave_number * L / 2;
+    }
+  } else {
+    // Piecewise constant ρJ and GJ: the segment integrals couple the cosines.
+    double s0 = 0;
+    for (const auto& seg : shaft.segments) {
+      const double s1 = s0 + seg.length;
+      for (int m = 0; m < num_shapes; ++m)
+        for (int n = 0; n < num_shapes; ++n) {
+          r.mass(m, n) += seg.inertia_per_length * cos_cos(m, n, L, s0, s1);
+          r.stiffness(m, n) += seg.torsional_rigidity * (m * std::numbers::pi / L) * (n * std::numbers::pi / L) *
+                               sin_sin(m, n, L, s0, s1);
+        }
+      s0 = s1;
+    }
   }
   for (const auto& lump : lumps) {
     Eigen::VectorXd phi(num_shapes);
@@ -48,7 +87,7 @@ RitzMatrices cosine_ritz_matrices(const UniformShaft& shaft, const std::vector<L
   return r;
 }
 
-Eigen::VectorXd ritz_frequencies_hz(const UniformShaft& shaft, const std::vector<LumpedInertia>& lumps,
+Eigen::VectorXd ritz_frequencies_hz(const SteppedShaft& shaft, const std::vector<LumpedInertia>& lumps,
                                     int num_shapes) {
   const RitzMatrices r = cosine_ritz_matrices(shaft, lumps, num_shapes);
   Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> solver(r.stiffness, r.mass,
@@ -57,12 +96,13 @@ Eigen::VectorXd ritz_frequencies_hz(const UniformShaft& shaft, const std::vector
   return to_hz(solver.eigenvalues());
 }
 
-Eigen::VectorXd fe_chain_frequencies_hz(const UniformShaft& shaft, const std::vector<LumpedInertia>& lumps,
+Eigen::VectorXd fe_chain_frequencies_hz(const SteppedShaft& shaft, const std::vector<LumpedInertia>& lumps,
                                         int num_elements) {
   check_shaft(shaft, lumps);
-  const double L = shaft.length;
-  // Segment boundaries: the shaft ends and every lump (positions closer than 1e-12 L merge).
+  const double L = shaft.length();
+  // Piece boundaries: the shaft ends, its steps and every lump (closer than 1e-12 L merge).
   std::vector<double> breaks{0.0, L};
+  for (double s = 0; const auto& seg : shaft.segments) breaks.push_back(s += seg.length);
   for (const auto& lump : lumps) breaks.push_back(lump.position);
   std::sort(breaks.begin(), breaks.end());
   breaks.erase(std::unique(breaks.begin(), breaks.end(),
@@ -92,12 +132,20 @@ Eigen::VectorXd fe_chain_frequencies_hz(const UniformShaft& shaft, const std::ve
   std::vector<double> node_inertia{0.0};
   for (int i = 0; i < num_segments; ++i) {
     const double h = (breaks[i + 1] - breaks[i]) / count[i];
+    // The shaft segment this piece lies in (pieces never straddle a step).
+    const double middle = (breaks[i] + breaks[i + 1]) / 2;
+    const UniformShaft* seg = &shaft.segments.back();
+    for (double s = 0; const auto& candidate : shaft.segments)
+      if (middle < (s += candidate.length)) {
+        seg = &candidate;
+        break;
+      }
     for (int e = 0; e < count[i]; ++e) {
-      const double half = shaft.inertia_per_length * h / 2;
+      const double half = seg->inertia_per_length * h / 2;
       node_inertia.back() += half;
       node_inertia.push_back(half);
       node_position.push_back(breaks[i] + (e + 1) * h);
-      element_stiffness.push_back(shaft.torsional_rigidity / h);
+      element_stiffness.push_back(seg->torsional_rigidity / h);
     }
   }
   for (const auto& lump : lumps) {

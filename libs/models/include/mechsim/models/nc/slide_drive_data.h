@@ -18,6 +18,10 @@ struct SlideDriveData {
   // The report's slide inertia reduced to the spindle, 2.1e-4 kg m² (it corresponds to a
   // ~6 mm lead). Empty: m s²/4π² from the mass and lead above.
   std::optional<double> slide_inertia_override;
+  // Model 3 replaces the coupling by a length of spindle of this diameter with the
+  // coupling's stiffness. The report's piece is of the 35 mm spindle, and it stays that piece
+  // when its study varies only the spindle. Empty: the spindle's diameter.
+  std::optional<double> coupling_piece_diameter;
 
   // The set as the report used it: I_slide = 2.1e-4 kg m².
   static SlideDriveData report_cnc200();
@@ -27,7 +31,8 @@ struct SlideDriveData {
   double spindle_stiffness() const;     // C_sp = G J / l [N m/rad]
   double slide_inertia() const;         // I_slide [kg m²], see slide_inertia_override
   double metres_per_radian() const;     // s / 2π [m/rad]
-  // The coupling as a length of this spindle with the same stiffness: l_eq = G J / C_kopp [m].
+  double coupling_piece_polar_moment() const;  // J of the coupling's stand-in piece [m⁴]
+  // The coupling as a length of that piece with the same stiffness: l_eq = G J_piece / C_kopp [m].
   double coupling_equivalent_length() const;
 };
 

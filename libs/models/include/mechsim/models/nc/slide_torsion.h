@@ -4,8 +4,9 @@
 //   model 1  two inertias I1 = I_kopp + I_sp/2, I2 = I_slide + I_sp/2 joined by the series
 //            spring c1 = C_kopp C_sp/(C_kopp + C_sp)                      (report: 520 Hz)
 //   model 2  grounded chain  frame —C_kopp— I1 —C_sp— I2  (2×2 generalised eigenproblem)
-//   model 3  continuous shaft: the coupling replaced by l_eq = G J / C_kopp of the same
-//            spindle, followed by the spindle (length l); the slide is a lumped inertia at
+//   model 3  continuous shaft: the coupling replaced by l_eq = G J / C_kopp of the 35 mm
+//            spindle (kept when the spindle diameter is varied: then the shaft is stepped),
+//            followed by the spindle (length l); the slide is a lumped inertia at
 //            its position; free–free. Lowest non-rigid mode by Rayleigh–Ritz with cosines
 //            (the report uses 3 shapes) or by a lumped-mass FE chain.  (report: 786 Hz, mid)
 //
@@ -39,8 +40,12 @@ struct GroundedChainFrequencies {
 };
 GroundedChainFrequencies grounded_chain_frequencies_hz(const SlideDriveData& data);
 
-// Model 3 geometry: the equivalent shaft (length l_eq + l) and its lumped inertias.
-UniformShaft equivalent_shaft(const SlideDriveData& data);
+// Model 3 geometry: the equivalent shaft (length l_eq + l) and its lumped inertias. Uniform
+// when the coupling's piece is of the spindle's diameter, else stepped (piece, spindle).
+SteppedShaft equivalent_shaft(const SlideDriveData& data);
+// The data with another spindle diameter and nothing else changed: the coupling keeps its
+// stand-in piece (the report's diameter study, spec nc_slide.md §2).
+SlideDriveData with_spindle_diameter(const SlideDriveData& data, double diameter);
 std::vector<LumpedInertia> equivalent_shaft_lumps(const SlideDriveData& data, double slide_position,
                                                   bool lump_coupling_inertia = false);
 // x = l/2, see the convention above [m].
