@@ -1,7 +1,9 @@
 #include <cstdio>
+#include <string>
 
 #include "commands.h"
 #include "mechsim/config/scene.h"
+#include "mechsim/cosim/process_realtime.h"
 #include "mechsim/cosim/scene_plan.h"
 
 namespace mechsim::tools {
@@ -27,6 +29,16 @@ void add_check_command(CLI::App& app, int& exit_code) {
                                                                            : "quadratic");
         if (node.cut)
           std::printf("  %12s <> %s (interface_jacobian, %d levels)\n", "", node.cut->partner_topic.c_str(), node.cut->levels);
+        // Real-time process settings (applied in realtime mode only), and whether this user may.
+        if (const auto& rt = node.spec->process_realtime; rt.any() && scene.mode == "realtime") {
+          std::string cpus;
+          for (int c : rt.cpus) cpus += (cpus.empty() ? "" : ",") + std::to_string(c);
+          const std::string refusal = cosim::realtime_refusal(rt, cosim::current_process_rights());
+          std::printf("  %12s realtime: %s, memory %s, cpus %s%s\n", "",
+                      rt.priority > 0 ? ("SCHED_FIFO " + std::to_string(rt.priority)).c_str() : "SCHED_OTHER",
+                      rt.lock_memory ? "locked" : "not locked", cpus.empty() ? "any" : cpus.c_str(),
+                      refusal.empty() ? "" : ("  (refused for this user: " + refusal + ")").c_str());
+        }
       }
       exit_code = 0;
     } catch (const config::ConfigError& e) {
