@@ -621,9 +621,11 @@ int Run::execute() {
                 summary["steps_per_second"].get<double>(), summary["real_time_factor"].get<double>());
     for (auto& [name, e] : summary["signals"].items()) {
       const std::string unit = e["unit"].get<std::string>();
-      std::printf("  %-32s max |error| %.3g %s (%.3g %% of range) at t = %.6g s, rms %.3g\n", name.c_str(),
-                  e["max_abs_error"].get<double>(), unit.c_str(), 100 * e["max_rel_error"].get<double>(),
-                  e["t_of_max_error_s"].get<double>(), e["rms_abs_error"].get<double>());
+      char at[48] = "";
+      if (e["max_abs_error"].get<double>() > 0) std::snprintf(at, sizeof at, " at t = %.6g s", e["t_of_max_error_s"].get<double>());
+      std::printf("  %-32s max |error| %.3g %s (%.3g %% of range)%s, rms %.3g\n", name.c_str(),
+                  e["max_abs_error"].get<double>(), unit.c_str(), 100 * e["max_rel_error"].get<double>(), at,
+                  e["rms_abs_error"].get<double>());
       // A known artefact of the coupling: say which, and what the error is without it.
       const double range = e["reference_range"].get<double>();
       auto percent = [&](double v) { return range > 0 ? 100 * v / range : 0.0; };
