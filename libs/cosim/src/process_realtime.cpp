@@ -80,12 +80,12 @@ std::string realtime_refusal(const config::ProcessRealtimeSpec& spec, const Proc
   const std::string key = spec.key_path.empty() ? "realtime" : spec.key_path;
   if (spec.priority > 0 && !rights.cap_sys_nice && rights.rtprio_limit < spec.priority) {
     why << key << ".priority: SCHED_FIFO priority " << spec.priority
-        << " needs root, CAP_SYS_NICE or RLIMIT_RTPRIO >= " << spec.priority << " (`ulimit -r`, limits.conf rtprio); this process has "
+        << " needs CAP_SYS_NICE (root has it) or RLIMIT_RTPRIO >= " << spec.priority << " (`ulimit -r`, limits.conf rtprio); this process has "
         << (rights.root ? "uid 0 without CAP_SYS_NICE" : "no CAP_SYS_NICE") << " and RLIMIT_RTPRIO " << rights.rtprio_limit;
     return why.str();
   }
   if (spec.lock_memory && !rights.cap_ipc_lock && !rights.memlock_unlimited) {
-    why << key << ".lock_memory: mlockall needs root, CAP_IPC_LOCK or an unlimited RLIMIT_MEMLOCK (`ulimit -l unlimited`, "
+    why << key << ".lock_memory: mlockall needs CAP_IPC_LOCK (root has it) or an unlimited RLIMIT_MEMLOCK (`ulimit -l unlimited`, "
         << "limits.conf memlock); this process has neither";
     return why.str();
   }
