@@ -17,13 +17,16 @@
 #include <sstream>
 #include <thread>
 
+#include "agent_client.h"
 #include "domain_lock.h"
+#include "hosts.h"
 #include "mechsim/config/scene.h"
 #include "mechsim/cosim/composer.h"
 #include "mechsim/cosim/output_log.h"
 #include "mechsim/cosim/pacer.h"
 #include "mechsim/cosim/scene_plan.h"
 #include "mechsim/transport/backends.h"
+#include "mechsim/transport/network_config.h"
 #include "node_processes.h"
 #include "replay_input.h"
 #include "run_recording.h"
@@ -77,7 +80,8 @@ struct RunOutcome {
 
 class Run {
  public:
-  Run(const LaunchOptions& o, config::Scene& scene, cosim::ScenePlan& plan) : opt_(o), scene_(scene), plan_(plan) {}
+  Run(const LaunchOptions& o, config::Scene& scene, cosim::ScenePlan& plan, HostLayout hosts)
+      : opt_(o), scene_(scene), plan_(plan), hosts_(std::move(hosts)) {}
 
   int execute();
 
@@ -98,6 +102,9 @@ class Run {
   std::unique_ptr<transport::Participant> participant_;
   std::unique_ptr<transport::ControlWriter> control_;
   std::unique_ptr<transport::StatusReader> status_;
+  HostLayout hosts_;
+  std::unique_ptr<AgentClient> agents_;  // multi-host runs; outlives processes_, which uses it
+  std::vector<std::string> hand_back_problems_;
   NodeProcesses processes_;
   std::map<std::string, NodeWatch> watch_;
   std::vector<std::string> warnings_;
@@ -205,7 +212,21 @@ void Run::print_progress(double since_start, bool final_line) {
 RunOutcome Run::run_nodes() {
   RunOutcome out;
   const auto launched = Clock::now();
+  std::string scene_text;
+  if (agents_) {
+    std::ifstream in(run_dir_ + "/scene.yaml");
+    scene_text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
   for (const auto& node : plan_.nodes()) {
+    if (auto remote = hosts_.remote.find(node.name()); remote != hosts_.remote.end()) {
+      // Its host's agent starts it with the same arguments, in a run folder of its own.
+      const json request{{"type", node.type->name}, {"scene_yaml", scene_text},
+                         {"run_folder", fs::path(run_dir_).filename().string()}, {"domain", domain_},
+                         {"address", remote->second}, {"peers", hosts_.peers}};
+      processes_.start_remote(node.name(), remote->second, request.dump(), *agents_);
+      watch_[node.name()] = {};
+      continue;
+    }
     const std::string exe = node_executable(node.type->name);
     std::vector<std::string> args{"--scene", run_dir_ + "/scene.yaml", "--node", node.name(), "--run-id", std::to_string(run_id_),
                                   "--domain", std::to_string(domain_), "--run-dir", run_dir_};
@@ -409,6 +430,7 @@ json Run::summarise(const RunOutcome& out) {
     const auto* spec = scene_.find_participant(p.name);
     nodes[p.name] = {{"type", spec->type},
                      {"vendor", spec->vendor},
+                     {"host", p.host.empty() ? (hosts_.launcher_host.empty() ? "local" : hosts_.launcher_host) : spec->host},
                      {"exit", p.describe_exit()},
                      {"last_step", w.seen ? w.last.header.step : 0},
                      {"solver",
@@ -427,6 +449,13 @@ json Run::summarise(const RunOutcome& out) {
     if (auto hint = stiffness_hint(health)) nodes[p.name]["solver"]["stiffness_hint"] = *hint;
   }
   s["nodes"] = nodes;
+  if (hosts_.multi_host) {
+    json agents = json::object();
+    if (agents_)
+      for (const auto& [address, hello] : agents_->agents()) agents[address] = json::parse(hello, nullptr, false);
+    s["hosts"] = {{"launcher_host", hosts_.launcher_host}, {"launcher_address", hosts_.launcher_address},
+                  {"addresses", hosts_.address}, {"agents", agents}, {"hand_back_problems", hand_back_problems_}};
+  }
   // Events the nodes reported (lift-off, landing, ...), from <node>.events.jsonl.
   json events = json::array();
   for (auto& p : processes_.processes()) {
@@ -472,10 +501,36 @@ int Run::execute() {
     lock.emplace(DomainLock::acquire());
     domain_ = lock->domain_id();
   }
-  configure_dds_environment();
+  if (hosts_.multi_host) {
+    // The hosts' interfaces and unicast peers for both vendors, generated from the scene,
+    // for the launcher, its recorder and the local nodes (the agents write their own).
+    const transport::UnicastNetwork network{hosts_.launcher_address, hosts_.peers};
+    fs::create_directories(run_dir_ + "/dds");
+    std::ofstream(run_dir_ + "/dds/cyclonedds.xml") << transport::cyclone_unicast_config(network);
+    std::ofstream(run_dir_ + "/dds/fastdds.xml") << transport::fastdds_unicast_profile(network);
+    ::setenv("CYCLONEDDS_URI", ("file://" + fs::absolute(run_dir_ + "/dds/cyclonedds.xml").string()).c_str(), 1);
+    ::setenv("FASTRTPS_DEFAULT_PROFILES_FILE", fs::absolute(run_dir_ + "/dds/fastdds.xml").string().c_str(), 1);
+  } else {
+    configure_dds_environment();
+  }
   participant_ = transport::create_participant(scene_.vendor, domain_);
   control_ = participant_->create_control_writer();
   status_ = participant_->create_status_reader();
+  if (hosts_.multi_host) {
+    agents_ = std::make_unique<AgentClient>(*participant_, run_id_, run_dir_);
+    std::vector<std::string> addresses;
+    for (const auto& [node, address] : hosts_.remote)
+      if (std::find(addresses.begin(), addresses.end(), address) == addresses.end()) addresses.push_back(address);
+    std::fprintf(stderr, "mechsim: multi-host run: launcher on %s (%s), waiting for the agents on %s\n",
+                 hosts_.launcher_host.c_str(), hosts_.launcher_address.c_str(), join(addresses, ", ").c_str());
+    const auto missing = agents_->wait_for_agents(addresses, opt_.ready_timeout_s, [] { return g_interrupt.load() != 0; });
+    if (!missing.empty()) {
+      std::fprintf(stderr, "mechsim launch: no mechsim agent answered from %s on domain %d within %g s: start "
+                           "`mechsim agent --domain %d --address ADDRESS --peers %s` on each of those hosts (docs/hosts.md)\n",
+                   join(missing, ", ").c_str(), domain_, opt_.ready_timeout_s, domain_, hosts_.launcher_address.c_str());
+      return 1;
+    }
+  }
 
   std::fprintf(stderr, "mechsim: scene '%s', run %s, domain %d, %zu nodes, folder %s\n", scene_.name.c_str(),
                hex_id(run_id_).c_str(), domain_, plan_.nodes().size(), run_dir_.c_str());
@@ -494,6 +549,15 @@ int Run::execute() {
   }
   recording_ = RunRecording::start(plan_, domain_, run_dir_);
   RunOutcome out = run_nodes();
+  if (agents_) {
+    // The remote nodes' files into this run folder: the same files as a single-host run.
+    hand_back_problems_ = agents_->collect(30.0);
+    for (const auto& why : hand_back_problems_) std::fprintf(stderr, "mechsim: warning: %s\n", why.c_str());
+    if (out.ok && !hand_back_problems_.empty()) {
+      out.ok = false;
+      out.reason = "the run folder is incomplete: " + hand_back_problems_.front();
+    }
+  }
   bool fastdds = scene_.vendor == "fastdds";
   for (const auto& p : scene_.participants) fastdds = fastdds || p.vendor == "fastdds";
   // A killed Fast DDS node leaves its shared-memory segments in /dev/shm.
@@ -728,8 +792,21 @@ int launch(const LaunchOptions& options) {
       return 2;
     }
   }
+  HostLayout hosts;
   try {
-    Run run(options, scene, *plan);
+    hosts = plan_hosts(scene);
+    for (const std::string& text : options.replays) {
+      const ReplayRequest r = parse_replay_request(text);
+      if (hosts.remote.count(r.node))
+        throw config::ConfigError(scene.file, "participants." + r.node + ".host",
+                                  "a replayed participant on the launcher's host: --replay of a participant on another host is not supported");
+    }
+  } catch (const config::ConfigError& e) {
+    std::fprintf(stderr, "%s\n", e.what());
+    return 2;
+  }
+  try {
+    Run run(options, scene, *plan, std::move(hosts));
     return run.execute();
   } catch (const std::exception& e) {
     std::fprintf(stderr, "mechsim launch: %s\n", e.what());

@@ -10,10 +10,14 @@
 
 namespace mechsim::launch {
 
+class AgentClient;
+
 struct NodeProcess {
   std::string name;
   std::string executable;
   pid_t pid = -1;
+  std::string host{};    // address of the agent that started it; "" = a child of this process
+  std::string remote_exit{};  // a remote node's exit as its agent described it
   bool exited = false;
   int exit_code = 0;     // valid when exited and !signalled
   bool signalled = false;
@@ -24,9 +28,13 @@ struct NodeProcess {
 class NodeProcesses {
  public:
   ~NodeProcesses();  // stops whatever still runs
-  // Starts `executable args...` with stdout and stderr appended to `log_path`.
+  // Starts `executable args...` with stdout and stderr appended to `log_path`, and the
+  // "NAME=value" entries of `environment` set on top of this process's environment.
   void start(const std::string& name, const std::string& executable, const std::vector<std::string>& args,
-             const std::string& log_path);
+             const std::string& log_path, const std::vector<std::string>& environment = {});
+  // A node on another host, started by its agent (agent_client.h); watched and stopped
+  // like a child. `agents` must outlive this object.
+  void start_remote(const std::string& name, const std::string& address, const std::string& request, AgentClient& agents);
   // Reaps exited children without blocking; returns the ones that exited now.
   std::vector<NodeProcess*> poll();
   bool all_exited() const;
@@ -36,6 +44,7 @@ class NodeProcesses {
 
  private:
   std::vector<NodeProcess> processes_;
+  AgentClient* agents_ = nullptr;
 };
 
 }  // namespace mechsim::launch

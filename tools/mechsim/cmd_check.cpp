@@ -27,6 +27,11 @@ void add_check_command(CLI::App& app, int& exit_code) {
                       e.reconstruction == config::Reconstruction::hold     ? "hold"
                       : e.reconstruction == config::Reconstruction::linear ? "linear"
                                                                            : "quadratic");
+        if (!node.spec->host.empty()) {
+          const config::HostSpec* host = scene.find_host(node.spec->host);
+          std::printf("  %12s on host %s (%s; started by its mechsim agent unless the launcher runs there)\n", "",
+                      host->name.c_str(), host->address.c_str());
+        }
         if (node.cut)
           std::printf("  %12s <> %s (interface_jacobian, %d levels)\n", "", node.cut->partner_topic.c_str(), node.cut->levels);
         // Real-time process settings (applied in realtime mode only), and whether this user may.

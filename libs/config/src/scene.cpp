@@ -32,7 +32,21 @@ const ParticipantSpec* Scene::find_participant(const std::string& name) const {
   return nullptr;
 }
 
+const HostSpec* Scene::find_host(const std::string& name) const {
+  for (const auto& h : hosts)
+    if (h.name == name) return &h;
+  return nullptr;
+}
+
 namespace {
+
+// An IPv4 address or a DNS host name (RFC 1123 characters); resolved by the launcher.
+bool valid_host_address(const std::string& s) {
+  if (s.empty() || s.size() > 63) return false;  // agent.idl carries it as string<64>
+  for (char c : s)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '.')) return false;
+  return s.front() != '-' && s.front() != '.';
+}
 
 bool valid_name(const std::string& s) {
   if (s.empty() || s.size() > 48) return false;
@@ -138,7 +152,7 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
                                                           o.find('=') == std::string::npos ? "" : o.substr(o.find('=') + 1));
   const ConfigNode& root = scene.root;
   if (!root.is_map()) root.fail("expected a scene: a map with keys scene, time, participants, ...");
-  root.allow_only({"scene", "description", "time", "mode", "rtf", "realtime", "dds", "hang_timeout",
+  root.allow_only({"scene", "description", "time", "mode", "rtf", "realtime", "dds", "hosts", "hang_timeout",
                    "participants", "connections", "compare", "report", "record", "design"});
 
   scene.name = root.string("scene");
@@ -171,17 +185,46 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   scene.design = root.optional_child("design");
   if (auto rec = root.optional_child("record")) scene.record = parse_record(*rec);
 
+  if (auto hosts = root.optional_child("hosts")) {
+    if (!hosts->is_map() || hosts->size() == 0) hosts->fail("expected a map of machines (name: {address: 10.0.0.2 or a host name})");
+    for (const std::string& name : hosts->keys()) {
+      ConfigNode h = hosts->child(name);
+      if (!valid_name(name)) h.fail("expected a host name of letters, digits and '_'");
+      if (!h.is_map()) h.fail("expected {address: an IPv4 address or a host name}");
+      h.allow_only({"address"});
+      HostSpec spec{name, h.string("address"), h.path()};
+      if (!valid_host_address(spec.address))
+        h.child("address").fail("expected an IPv4 address (10.0.0.2) or a host name (letters, digits, '-' and '.'), got '" + spec.address + "'");
+      for (const auto& other : scene.hosts)
+        if (other.address == spec.address) h.child("address").fail("expected each host once: " + other.key_path + " has the same address");
+      scene.hosts.push_back(spec);
+    }
+  }
+
   const ConfigNode participants = root.child("participants");
   if (!participants.is_map() || participants.size() == 0)
     participants.fail("expected a map of participant instances (name: {type: ..., params: ...})");
   for (const std::string& name : participants.keys()) {
     ConfigNode p = participants.child(name);
     if (!valid_name(name)) p.fail("expected an instance name of letters, digits and '_'");
-    p.allow_only({"type", "params", "dds", "solver", "realtime"});
+    p.allow_only({"type", "params", "dds", "host", "solver", "realtime"});
     ParticipantSpec spec;
     spec.name = name;
     spec.type = p.string("type");
     spec.vendor = p.has("dds") ? p.choice("dds", {"cyclone", "fastdds"}) : scene.vendor;
+    if (p.has("host")) {
+      spec.host = p.string("host");
+      if (!scene.find_host(spec.host)) {
+        std::string names;
+        for (const auto& h : scene.hosts) names += (names.empty() ? "" : ", ") + h.name;
+        p.child("host").fail("expected a host of the scene's hosts: section (" + (names.empty() ? std::string("there is none") : names) +
+                             "), got '" + spec.host + "'");
+      }
+      // The agents of the other hosts listen on one domain (mechsim agent --domain D).
+      if (!scene.domain_id)
+        p.child("host").fail("a participant placed on a host needs the agents' DDS domain: set dds.domain to the "
+                             "--domain of the hosts' `mechsim agent` (docs/hosts.md)");
+    }
     spec.process_realtime = scene_process_realtime;
     if (auto rt = p.optional_child("realtime")) {
       rt->allow_only({"priority", "lock_memory", "cpus"});

@@ -1,5 +1,9 @@
 #include "mechsim/transport/messages.h"
 
+#include <stdexcept>
+
+#include "mechsim/transport/participant.h"
+
 namespace mechsim::transport {
 
 const char* to_string(NodeState s) {
@@ -11,6 +15,14 @@ const char* to_string(NodeState s) {
     case NodeState::failed: return "failed";
   }
   return "unknown";
+}
+
+std::unique_ptr<AgentWriter> Participant::create_agent_writer(const std::string& topic) {
+  throw std::logic_error("the " + vendor() + " transport has no agent topics (" + topic + "): multi-host runs need a DDS vendor");
+}
+
+std::unique_ptr<AgentReader> Participant::create_agent_reader(const std::string& topic) {
+  throw std::logic_error("the " + vendor() + " transport has no agent topics (" + topic + "): multi-host runs need a DDS vendor");
 }
 
 }  // namespace mechsim::transport

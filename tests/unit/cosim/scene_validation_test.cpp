@@ -116,5 +116,32 @@ TEST(SceneValidation, RecordSection) {
   EXPECT_TRUE(config::load_scene(path, {"record=true"}).record.has_value());
 }
 
+
+// Multi-host scenes (docs/hosts.md): hosts are checked like every other key.
+TEST(SceneValidation, HostsAndPlacement) {
+  const std::string hosts = "mode: lockstep\ndds: {domain: 17}\nhosts:\n  a: {address: 10.0.0.1}\n  b: {address: rt-box.plant.lan}\n";
+  const std::string placed = "    type: follower\n    host: b";
+  std::string ok = cam_press_with("mode: lockstep", hosts);
+  ok.replace(ok.find("    type: follower"), std::string("    type: follower").size(), placed);
+  EXPECT_EQ(refusal(ok), "");
+  {
+    config::Scene scene = config::load_scene(write_scene(ok));
+    ASSERT_EQ(scene.hosts.size(), 2u);
+    EXPECT_EQ(scene.hosts[1].address, "rt-box.plant.lan");
+    EXPECT_EQ(scene.find_participant("follower")->host, "b");
+    EXPECT_EQ(scene.find_participant("cam")->host, "");
+  }
+  std::string unknown = ok;
+  unknown.replace(unknown.find("host: b"), 7, "host: c");
+  expect_refused(unknown, "participants.follower.host", "expected a host of the scene's hosts: section (a, b), got 'c'");
+  std::string no_domain = ok;
+  no_domain.replace(no_domain.find("dds: {domain: 17}"), 17, "");
+  expect_refused(no_domain, "participants.follower.host", "set dds.domain");
+  expect_refused(cam_press_with("mode: lockstep", "hosts:\n  a: {address: 10.0.0.1/24}\n"), "hosts.a.address", "expected an IPv4 address");
+  expect_refused(cam_press_with("mode: lockstep", "hosts:\n  a: {adress: 10.0.0.1}\n"), "hosts.a", "unknown key 'adress'");
+  expect_refused(cam_press_with("mode: lockstep", "hosts:\n  a: {address: 10.0.0.1}\n  b: {address: 10.0.0.1}\n"), "hosts.b.address",
+                 "expected each host once");
+}
+
 }  // namespace
 }  // namespace mechsim::cosim

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "agent.h"
 #include "control.h"
 #include "cyclone_qos.h"
 #include "cyclone_types.h"
@@ -237,6 +238,66 @@ class CycloneStatusReader final : public StatusReader {
   dds_entity_t reader_;
 };
 
+class CycloneAgentWriter final : public AgentWriter {
+ public:
+  explicit CycloneAgentWriter(dds_entity_t w) : writer_(w) {}
+  ~CycloneAgentWriter() override { dds_delete(writer_); }
+  void write(const AgentMessage& m) override {
+    if (m.data.size() > kAgentChunkBytes) throw std::logic_error("agent message: more than kAgentChunkBytes of data");
+    mechsim_msg_AgentMessage a{};
+    a.header.run_id = m.run_id;
+    a.header.step = m.sequence;
+    a.kind = m.kind;
+    copy_bounded(a.host, sizeof a.host, m.host);
+    copy_bounded(a.node, sizeof a.node, m.node);
+    a.text = const_cast<char*>(m.text.c_str());
+    a.data._buffer = reinterpret_cast<uint8_t*>(const_cast<std::byte*>(m.data.data()));
+    a.data._length = a.data._maximum = static_cast<uint32_t>(m.data.size());
+    a.data._release = false;
+    dds_return_t rc = dds_write(writer_, &a);
+    if (rc != DDS_RETCODE_OK) fail("write agent message", rc);
+  }
+  int matched_readers() const override { return publication_matched(writer_); }
+
+ private:
+  dds_entity_t writer_;
+};
+
+class CycloneAgentReader final : public AgentReader {
+ public:
+  explicit CycloneAgentReader(dds_entity_t r) : reader_(r) {}
+  ~CycloneAgentReader() override { dds_delete(reader_); }
+  std::optional<AgentMessage> take() override {
+    // The loan-free take with a null buffer pointer lets Cyclone allocate the string and
+    // the sequence; dds_return_loan frees them.
+    void* samples[1] = {nullptr};
+    dds_sample_info_t info;
+    for (;;) {
+      dds_return_t n = dds_take(reader_, samples, &info, 1, 1);
+      if (n < 0) fail("take agent message", n);
+      if (n == 0) return std::nullopt;
+      if (info.valid_data) break;
+      dds_return_loan(reader_, samples, n);
+      samples[0] = nullptr;
+    }
+    const auto* a = static_cast<const mechsim_msg_AgentMessage*>(samples[0]);
+    AgentMessage m;
+    m.run_id = a->header.run_id;
+    m.sequence = a->header.step;
+    m.kind = a->kind;
+    m.host = a->host;
+    m.node = a->node;
+    m.text = a->text ? a->text : "";
+    const auto* bytes = reinterpret_cast<const std::byte*>(a->data._buffer);
+    m.data.assign(bytes, bytes + a->data._length);
+    dds_return_loan(reader_, samples, 1);
+    return m;
+  }
+
+ private:
+  dds_entity_t reader_;
+};
+
 }  // namespace
 
 CycloneParticipant::CycloneParticipant(int domain_id) {
@@ -314,6 +375,22 @@ std::unique_ptr<StatusReader> CycloneParticipant::create_status_reader() {
   dds_entity_t r = check(dds_create_reader(participant_, topic(kStatusTopic, &mechsim_msg_Status_desc), qos.q, nullptr),
                          "create status reader");
   return std::make_unique<CycloneStatusReader>(attach_reader(r));
+}
+
+std::unique_ptr<AgentWriter> CycloneParticipant::create_agent_writer(const std::string& topic_name) {
+  Qos qos;
+  set_qos(qos, QosKind::agent);
+  dds_entity_t w = check(dds_create_writer(participant_, topic(topic_name, &mechsim_msg_AgentMessage_desc), qos.q, nullptr),
+                         "create writer on " + topic_name);
+  return std::make_unique<CycloneAgentWriter>(w);
+}
+
+std::unique_ptr<AgentReader> CycloneParticipant::create_agent_reader(const std::string& topic_name) {
+  Qos qos;
+  set_qos(qos, QosKind::agent);
+  dds_entity_t r = check(dds_create_reader(participant_, topic(topic_name, &mechsim_msg_AgentMessage_desc), qos.q, nullptr),
+                         "create reader on " + topic_name);
+  return std::make_unique<CycloneAgentReader>(attach_reader(r));
 }
 
 bool CycloneParticipant::wait(std::chrono::nanoseconds timeout) {

@@ -15,10 +15,10 @@ struct Qos {
   ~Qos() { dds_delete_qos(q); }
 };
 
-enum class QosKind { data, control, status };
+enum class QosKind { data, control, status, agent };
 
 // data: RELIABLE, KEEP_ALL, VOLATILE; control: RELIABLE, TRANSIENT_LOCAL, KEEP_LAST 1;
-// status: BEST_EFFORT, KEEP_LAST 256.
+// status: BEST_EFFORT, KEEP_LAST 256; agent: RELIABLE, KEEP_ALL, VOLATILE.
 inline void set_qos(Qos& qos, QosKind kind) {
   switch (kind) {
     case QosKind::data:
@@ -30,6 +30,11 @@ inline void set_qos(Qos& qos, QosKind kind) {
       dds_qset_reliability(qos.q, DDS_RELIABILITY_RELIABLE, DDS_SECS(10));
       dds_qset_history(qos.q, DDS_HISTORY_KEEP_LAST, 1);
       dds_qset_durability(qos.q, DDS_DURABILITY_TRANSIENT_LOCAL);
+      break;
+    case QosKind::agent:  // requests and replies of the agent conversation
+      dds_qset_reliability(qos.q, DDS_RELIABILITY_RELIABLE, DDS_SECS(10));
+      dds_qset_history(qos.q, DDS_HISTORY_KEEP_ALL, 0);
+      dds_qset_durability(qos.q, DDS_DURABILITY_VOLATILE);
       break;
     case QosKind::status:
       dds_qset_reliability(qos.q, DDS_RELIABILITY_BEST_EFFORT, 0);

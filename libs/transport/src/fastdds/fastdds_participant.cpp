@@ -27,6 +27,7 @@
 
 #include "fastdds_types.h"
 #include "mechsim/transport/raw.h"
+#include "fastddsgen/agentPubSubTypes.h"
 #include "fastddsgen/controlPubSubTypes.h"
 #include "fastddsgen/statusPubSubTypes.h"
 
@@ -74,6 +75,13 @@ void status_qos(dds::ReliabilityQosPolicy& reliability, dds::HistoryQosPolicy& h
   reliability.kind = dds::BEST_EFFORT_RELIABILITY_QOS;
   history.kind = dds::KEEP_LAST_HISTORY_QOS;
   history.depth = 256;
+  durability.kind = dds::VOLATILE_DURABILITY_QOS;
+}
+
+void agent_qos(dds::ReliabilityQosPolicy& reliability, dds::HistoryQosPolicy& history, dds::DurabilityQosPolicy& durability) {
+  reliability.kind = dds::RELIABLE_RELIABILITY_QOS;
+  reliability.max_blocking_time = Duration_t(10, 0);
+  history.kind = dds::KEEP_ALL_HISTORY_QOS;
   durability.kind = dds::VOLATILE_DURABILITY_QOS;
 }
 
@@ -381,6 +389,57 @@ class FastStatusReader final : public StatusReader, Endpoint {
   dds::ReadCondition* condition_;
 };
 
+class FastAgentWriter final : public AgentWriter, Endpoint {
+ public:
+  FastAgentWriter(std::shared_ptr<FastCore> core, dds::DataWriter* w) : Endpoint(std::move(core)), writer_(w) {}
+  ~FastAgentWriter() override { core_->publisher->delete_datawriter(writer_); }
+  void write(const AgentMessage& m) override {
+    if (m.data.size() > kAgentChunkBytes) throw std::logic_error("agent message: more than kAgentChunkBytes of data");
+    mechsim::msg::AgentMessage a;
+    a.header().run_id(m.run_id);
+    a.header().step(m.sequence);
+    a.kind(m.kind);
+    std::string host, node;
+    copy_bounded(host, m.host, 64);  // string<64> host, node in agent.idl
+    copy_bounded(node, m.node, 64);
+    a.host(host);
+    a.node(node);
+    a.text(m.text);
+    const auto* bytes = reinterpret_cast<const std::uint8_t*>(m.data.data());
+    a.data(std::vector<std::uint8_t>(bytes, bytes + m.data.size()));
+    if (!writer_->write(&a)) fail("write agent message");
+  }
+  int matched_readers() const override { return publication_matched(writer_); }
+
+ private:
+  dds::DataWriter* writer_;
+};
+
+class FastAgentReader final : public AgentReader, Endpoint {
+ public:
+  FastAgentReader(std::shared_ptr<FastCore> core, dds::DataReader* r)
+      : Endpoint(std::move(core)), reader_(r), condition_(core_->attach(r)) {}
+  ~FastAgentReader() override { core_->delete_reader(reader_, condition_); }
+  std::optional<AgentMessage> take() override {
+    mechsim::msg::AgentMessage a;
+    if (!take_one(reader_, &a)) return std::nullopt;
+    AgentMessage m;
+    m.run_id = a.header().run_id();
+    m.sequence = a.header().step();
+    m.kind = a.kind();
+    m.host = a.host().to_string();
+    m.node = a.node().to_string();
+    m.text = a.text();
+    const auto* bytes = reinterpret_cast<const std::byte*>(a.data().data());
+    m.data.assign(bytes, bytes + a.data().size());
+    return m;
+  }
+
+ private:
+  dds::DataReader* reader_;
+  dds::ReadCondition* condition_;
+};
+
 }  // namespace
 
 void clean_shared_memory() {
@@ -431,6 +490,14 @@ std::unique_ptr<StatusWriter> FastParticipant::create_status_writer() {
 
 std::unique_ptr<StatusReader> FastParticipant::create_status_reader() {
   return std::make_unique<FastStatusReader>(core_, core_->reader(kStatusTopic, new mechsim::msg::StatusPubSubType(), status_qos));
+}
+
+std::unique_ptr<AgentWriter> FastParticipant::create_agent_writer(const std::string& topic) {
+  return std::make_unique<FastAgentWriter>(core_, core_->writer(topic, new mechsim::msg::AgentMessagePubSubType(), agent_qos));
+}
+
+std::unique_ptr<AgentReader> FastParticipant::create_agent_reader(const std::string& topic) {
+  return std::make_unique<FastAgentReader>(core_, core_->reader(topic, new mechsim::msg::AgentMessagePubSubType(), agent_qos));
 }
 
 bool FastParticipant::wait(std::chrono::nanoseconds timeout) {

@@ -29,6 +29,8 @@ class FastParticipant final : public Participant {
   std::unique_ptr<ControlReader> create_control_reader() override;
   std::unique_ptr<StatusWriter> create_status_writer() override;
   std::unique_ptr<StatusReader> create_status_reader() override;
+  std::unique_ptr<AgentWriter> create_agent_writer(const std::string& topic) override;
+  std::unique_ptr<AgentReader> create_agent_reader(const std::string& topic) override;
   bool wait(std::chrono::nanoseconds timeout) override;
   void wake() override;
   std::string vendor() const override { return "fastdds"; }

@@ -49,10 +49,18 @@ struct ProcessRealtimeSpec {
   bool any() const { return priority > 0 || lock_memory || !cpus.empty(); }
 };
 
+// A machine of a multi-host run (`hosts: {name: {address: ...}}`, docs/hosts.md).
+struct HostSpec {
+  std::string name;
+  std::string address;   // an IPv4 address or a host name, as written
+  std::string key_path;  // "hosts.rt_box"
+};
+
 struct ParticipantSpec {
   std::string name;    // instance name, unique in the scene; prefixes its topics
   std::string type;    // node type, e.g. "cam_shaft"
   std::string vendor;  // DDS vendor of this node
+  std::string host;    // a name of Scene::hosts; "" = where the launcher runs
   SolverSpec solver;
   ProcessRealtimeSpec process_realtime;  // the scene's realtime settings with this participant's over them
   ConfigNode params;   // type-specific, validated by the node type
@@ -127,6 +135,7 @@ struct Scene {
   std::string vendor = default_dds_vendor();  // scene-wide default
   std::optional<int> domain_id;    // default: the launcher picks a free one
   double hang_timeout = 5.0;       // s without a status from a node => hung
+  std::vector<HostSpec> hosts;     // empty: a single-host run
   std::vector<ParticipantSpec> participants;
   std::vector<ConnectionSpec> connections;
   std::vector<SignalRef> compare;
@@ -138,6 +147,7 @@ struct Scene {
   ConfigNode root;  // the whole document (with overrides applied)
 
   const ParticipantSpec* find_participant(const std::string& name) const;
+  const HostSpec* find_host(const std::string& name) const;
 };
 
 // Loads and validates the generic part of a scene. `overrides` are "dotted.key=value"

@@ -1,8 +1,10 @@
 // Transport-neutral messages: what node logic and the launcher see instead of DDS types.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace mechsim::transport {
 
@@ -47,5 +49,18 @@ struct StatusMessage {
   double rtf_window = 0.0;     // achieved real-time factor over the last second
   std::string message;  // last error (at most 256 characters on the wire)
 };
+
+// A message between a launcher and a host's `mechsim agent` (idl/agent.idl); `kind` and the
+// meaning of the fields belong to the agent protocol (tools/agent/agent_protocol.h).
+struct AgentMessage {
+  std::uint64_t run_id = 0;
+  std::uint64_t sequence = 0;
+  std::int32_t kind = 0;
+  std::string host;   // at most 64 characters on the wire
+  std::string node;   // at most 64 characters on the wire
+  std::string text;
+  std::vector<std::byte> data;  // at most kAgentChunkBytes
+};
+inline constexpr std::size_t kAgentChunkBytes = 65536;
 
 }  // namespace mechsim::transport

@@ -6,7 +6,8 @@
 //    unread; a writer blocks when its history is full), VOLATILE;
 //  - mechsim/control: RELIABLE, TRANSIENT_LOCAL, KEEP_LAST 1 (a late joiner sees the last
 //    command);
-//  - mechsim/status: BEST_EFFORT, KEEP_LAST (a heartbeat: losing one is harmless).
+//  - mechsim/status: BEST_EFFORT, KEEP_LAST (a heartbeat: losing one is harmless);
+//  - mechsim/agent/request and /reply: RELIABLE, KEEP_ALL, VOLATILE (docs/hosts.md).
 #pragma once
 
 #include <chrono>
@@ -66,6 +67,19 @@ class StatusReader {
   virtual std::optional<StatusMessage> take() = 0;
 };
 
+class AgentWriter {
+ public:
+  virtual ~AgentWriter() = default;
+  virtual void write(const AgentMessage& message) = 0;
+  virtual int matched_readers() const = 0;
+};
+
+class AgentReader {
+ public:
+  virtual ~AgentReader() = default;
+  virtual std::optional<AgentMessage> take() = 0;
+};
+
 class Participant {
  public:
   virtual ~Participant() = default;
@@ -75,6 +89,10 @@ class Participant {
   virtual std::unique_ptr<ControlReader> create_control_reader() = 0;
   virtual std::unique_ptr<StatusWriter> create_status_writer() = 0;
   virtual std::unique_ptr<StatusReader> create_status_reader() = 0;
+  // The agent conversation (kAgentRequestTopic or kAgentReplyTopic). The DDS backends have
+  // it; the in-process one, which never leaves the process, throws std::logic_error.
+  virtual std::unique_ptr<AgentWriter> create_agent_writer(const std::string& topic);
+  virtual std::unique_ptr<AgentReader> create_agent_reader(const std::string& topic);
   // Blocks until any reader created by this participant may have data, wake() is called,
   // or the timeout passes. Returns false on timeout. Spurious wake-ups are allowed.
   virtual bool wait(std::chrono::nanoseconds timeout) = 0;

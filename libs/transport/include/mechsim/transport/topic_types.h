@@ -31,5 +31,8 @@ const TopicType* find_topic_type(std::string_view short_or_scoped_name);
 // Fixed topic names.
 inline constexpr const char* kControlTopic = "mechsim/control";
 inline constexpr const char* kStatusTopic = "mechsim/status";
+// The agent conversation of multi-host runs (idl/agent.idl, docs/hosts.md).
+inline constexpr const char* kAgentRequestTopic = "mechsim/agent/request";
+inline constexpr const char* kAgentReplyTopic = "mechsim/agent/reply";
 
 }  // namespace mechsim::transport

@@ -1,0 +1,48 @@
+// The conversation between a launcher and the `mechsim agent` of another host
+// (docs/hosts.md), on mechsim/agent/request (launcher -> agents) and mechsim/agent/reply
+// (agents -> launcher), both RELIABLE + KEEP_ALL + VOLATILE on the run's domain.
+//
+//   agent    -> hello      every second: its addresses and host name (text, JSON)
+//   launcher -> start      one node: host = the agent's address, node = participant,
+//                          text = {type, scene_yaml, run_folder, domain, address, peers}
+//   agent    -> started    node started (the launcher repeats `start` every second until
+//                          this comes: a sample written right after discovery can be lost)
+//   agent    -> refused    node (or "" for the whole request) not started: text = why
+//   agent    -> log        node, data = the next bytes of its log
+//   agent    -> exited     node, text = {exit_code, signalled, signal, describe}
+//   launcher -> heartbeat  every 0.5 s while the run lives; an agent that hears none for its
+//                          --heartbeat-timeout stops the run's nodes (the launcher is gone)
+//   launcher -> stop       stop the run's nodes (SIGTERM, then SIGKILL after 2 s)
+//   launcher -> collect    send the run folder's files, then forget the run (repeated
+//                          until `collected`)
+//   agent    -> file       node = file name, data = a chunk, text = {offset, size}
+//   agent    -> collected  text = {files: [names]}: every chunk of every file was written
+//
+// Every message carries the run id; an agent acts only on requests whose host is one of its
+// own addresses (or "*", for all agents of the run).
+#pragma once
+
+#include <cstdint>
+
+namespace mechsim::agent {
+
+enum class AgentKind : std::int32_t {
+  hello = 1,
+  started = 2,
+  refused = 3,
+  log = 4,
+  exited = 5,
+  file = 6,
+  collected = 7,
+  start = 101,
+  heartbeat = 102,
+  stop = 103,
+  collect = 104,
+};
+
+inline constexpr const char* kAllAgents = "*";
+inline constexpr double kHeartbeatPeriodS = 0.5;
+inline constexpr double kDefaultHeartbeatTimeoutS = 5.0;
+inline constexpr double kHelloPeriodS = 1.0;
+
+}  // namespace mechsim::agent

@@ -1,0 +1,182 @@
+#include "agent_client.h"
+
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "agent_protocol.h"
+
+namespace mechsim::launch {
+
+using Clock = std::chrono::steady_clock;
+using nlohmann::json;
+using agent::AgentKind;
+
+namespace {
+
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// A name an agent may write into the run folder: no path, no hidden file.
+bool plain_file_name(const std::string& name) {
+  return !name.empty() && name.find('/') == std::string::npos && name[0] != '.' && name != "scene.yaml" && name != "summary.json";
+}
+
+}  // namespace
+
+AgentClient::AgentClient(transport::Participant& participant, std::uint64_t run_id, std::string run_dir)
+    : participant_(participant), run_id_(run_id), run_dir_(std::move(run_dir)) {
+  requests_ = participant_.create_agent_writer(transport::kAgentRequestTopic);
+  replies_ = participant_.create_agent_reader(transport::kAgentReplyTopic);
+}
+
+AgentClient::~AgentClient() {
+  // Whatever happened, the remote nodes of this run must not outlive the launcher; the
+  // agents' heartbeat timeout is the backstop when this message is lost.
+  if (!stopped_ && !node_address_.empty()) {
+    try {
+      stop_all();
+    } catch (const std::exception&) {
+    }
+  }
+}
+
+void AgentClient::send(std::int32_t kind, const std::string& host, const std::string& node, const std::string& text) {
+  transport::AgentMessage m;
+  m.run_id = run_id_;
+  m.sequence = ++sequence_;
+  m.kind = kind;
+  m.host = host;
+  m.node = node;
+  m.text = text;
+  requests_->write(m);
+}
+
+std::vector<std::string> AgentClient::wait_for_agents(const std::vector<std::string>& addresses, double timeout_s,
+                                                      const std::function<bool()>& interrupted) {
+  const auto t0 = Clock::now();
+  for (;;) {
+    pump();
+    std::vector<std::string> missing;
+    for (const auto& a : addresses)
+      if (!hello_.count(a)) missing.push_back(a);
+    // An agent's hello arrived: its reader of requests exists; matched is checked too so
+    // that the first start is not written into the void.
+    if (missing.empty() && requests_->matched_readers() >= static_cast<int>(addresses.size())) return {};
+    if (seconds_since(t0) > timeout_s || interrupted()) return missing.empty() ? std::vector<std::string>{"(requests not matched)"} : missing;
+    participant_.wait(std::chrono::milliseconds(20));
+  }
+}
+
+void AgentClient::start(const std::string& node, const std::string& address, const std::string& request) {
+  node_address_[node] = address;
+  pending_[node] = {address, request, Clock::now()};
+  send(static_cast<std::int32_t>(AgentKind::start), address, node, request);
+}
+
+void AgentClient::handle(const transport::AgentMessage& m) {
+  const auto kind = static_cast<AgentKind>(m.kind);
+  if (kind == AgentKind::hello) {
+    hello_[m.host] = m.text;
+    return;
+  }
+  if (m.run_id != run_id_) return;
+  switch (kind) {
+    case AgentKind::started:
+      pending_.erase(m.node);
+      break;
+    case AgentKind::refused:
+      pending_.erase(m.node);
+      exits_.push_back({m.node, 126, false, 0, "refused by the agent on " + m.host + ": " + m.text});
+      break;
+    case AgentKind::exited: {
+      const json j = json::parse(m.text, nullptr, false);
+      RemoteExit e{m.node, 1, false, 0, "exit (unreadable report) on " + m.host};
+      if (!j.is_discarded()) {
+        e.exit_code = j.value("exit_code", 1);
+        e.signalled = j.value("signalled", false);
+        e.signal = j.value("signal", 0);
+        e.describe = j.value("describe", std::string("exit")) + " on " + m.host;
+      }
+      exits_.push_back(e);
+      break;
+    }
+    case AgentKind::log:
+      if (plain_file_name(m.node + ".log")) {
+        std::ofstream out(run_dir_ + "/" + m.node + ".log", std::ios::binary | std::ios::app);
+        out.write(reinterpret_cast<const char*>(m.data.data()), static_cast<std::streamsize>(m.data.size()));
+      }
+      break;
+    case AgentKind::file: {
+      if (!plain_file_name(m.node)) break;
+      const json j = json::parse(m.text, nullptr, false);
+      const std::uint64_t offset = j.is_discarded() ? 0 : j.value("offset", std::uint64_t{0});
+      const std::string path = run_dir_ + "/" + m.node;
+      // The first chunk replaces what was there (the log streamed so far): the file is the record.
+      std::fstream out(path, offset == 0 ? (std::ios::out | std::ios::binary | std::ios::trunc)
+                                         : (std::ios::in | std::ios::out | std::ios::binary));
+      out.seekp(static_cast<std::streamoff>(offset));
+      out.write(reinterpret_cast<const char*>(m.data.data()), static_cast<std::streamsize>(m.data.size()));
+      break;
+    }
+    case AgentKind::collected:
+      collected_.insert(m.host);
+      break;
+    default:
+      break;
+  }
+}
+
+void AgentClient::pump() {
+  while (auto m = replies_->take()) handle(*m);
+  if (seconds_since(last_heartbeat_) > agent::kHeartbeatPeriodS && !node_address_.empty()) {
+    send(static_cast<std::int32_t>(AgentKind::heartbeat), agent::kAllAgents, "", "");
+    last_heartbeat_ = Clock::now();
+  }
+  for (auto& [node, p] : pending_)
+    if (seconds_since(p.sent) > 1.0) {
+      send(static_cast<std::int32_t>(AgentKind::start), p.address, node, p.request);
+      p.sent = Clock::now();
+    }
+}
+
+std::vector<RemoteExit> AgentClient::take_exits() {
+  pump();
+  std::vector<RemoteExit> out;
+  out.swap(exits_);
+  return out;
+}
+
+void AgentClient::stop_all() {
+  stopped_ = true;
+  pending_.clear();
+  send(static_cast<std::int32_t>(AgentKind::stop), agent::kAllAgents, "", "");
+}
+
+std::vector<std::string> AgentClient::collect(double timeout_s) {
+  std::set<std::string> addresses;
+  for (const auto& [node, address] : node_address_) addresses.insert(address);
+  const auto t0 = Clock::now();
+  auto last_ask = Clock::now() - std::chrono::hours(1);
+  for (;;) {
+    pump();
+    bool all = true;
+    for (const auto& a : addresses) all = all && collected_.count(a);
+    if (all) break;
+    if (seconds_since(t0) > timeout_s) break;
+    if (seconds_since(last_ask) > 2.0) {  // repeated: a request right after a stop may be lost
+      for (const auto& a : addresses)
+        if (!collected_.count(a)) send(static_cast<std::int32_t>(AgentKind::collect), a, "", "");
+      last_ask = Clock::now();
+    }
+    participant_.wait(std::chrono::milliseconds(20));
+  }
+  std::vector<std::string> missing;
+  for (const auto& a : addresses)
+    if (!collected_.count(a)) missing.push_back("the agent on " + a + " did not hand back its nodes' files within " +
+                                                std::to_string(static_cast<int>(timeout_s)) + " s");
+  stopped_ = true;  // collected: the agents forgot the run
+  return missing;
+}
+
+}  // namespace mechsim::launch

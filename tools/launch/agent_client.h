@@ -1,0 +1,74 @@
+// The launcher's side of the agent conversation (tools/agent/agent_protocol.h): finds the
+// agents of the hosts a run needs, asks them to start nodes, keeps the run alive with
+// heartbeats, writes the logs they stream into the run folder, and at the end collects
+// the files the remote nodes wrote, so that the run folder holds what a single-host run's
+// holds. NodeProcesses uses it for the participants placed on other hosts.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "mechsim/transport/participant.h"
+
+namespace mechsim::launch {
+
+struct RemoteExit {
+  std::string node;
+  int exit_code = 0;
+  bool signalled = false;
+  int signal = 0;
+  std::string describe;  // "exit code 0 on 10.77.0.2", "refused by the agent on ...: why"
+};
+
+class AgentClient {
+ public:
+  AgentClient(transport::Participant& participant, std::uint64_t run_id, std::string run_dir);
+  ~AgentClient();
+  // Waits until an agent answered from each address and the request writer reached them
+  // all. Returns the addresses still without an agent at the timeout (empty: all there).
+  std::vector<std::string> wait_for_agents(const std::vector<std::string>& addresses, double timeout_s,
+                                           const std::function<bool()>& interrupted);
+  // Asks the agent at `address` to start participant `node`; `request` is the start text (JSON).
+  void start(const std::string& node, const std::string& address, const std::string& request);
+  // Takes the replies (logs into <run_dir>/<node>.log), repeats unanswered starts, sends the
+  // heartbeat when due. Cheap: call it from every wait loop of the launcher.
+  void pump();
+  std::vector<RemoteExit> take_exits();
+  // Asks every agent to stop this run's nodes (SIGTERM, then SIGKILL).
+  void stop_all();
+  // Asks every agent for the files its nodes wrote and writes them into the run folder.
+  // Returns a line per agent that did not hand back in time (empty: all files are here).
+  std::vector<std::string> collect(double timeout_s);
+  // The agents' hello texts (JSON) by address, for the summary.
+  const std::map<std::string, std::string>& agents() const { return hello_; }
+
+ private:
+  void send(std::int32_t kind, const std::string& host, const std::string& node, const std::string& text);
+  void handle(const transport::AgentMessage& m);
+
+  transport::Participant& participant_;
+  std::uint64_t run_id_;
+  std::string run_dir_;
+  std::unique_ptr<transport::AgentWriter> requests_;
+  std::unique_ptr<transport::AgentReader> replies_;
+  std::map<std::string, std::string> hello_;  // address -> hello text
+  struct PendingStart {
+    std::string address, request;
+    std::chrono::steady_clock::time_point sent;
+  };
+  std::map<std::string, PendingStart> pending_;  // node -> start not yet answered
+  std::map<std::string, std::string> node_address_;
+  std::vector<RemoteExit> exits_;
+  std::set<std::string> collected_;  // addresses that handed back everything
+  std::chrono::steady_clock::time_point last_heartbeat_{};
+  std::uint64_t sequence_ = 0;
+  bool stopped_ = false;
+};
+
+}  // namespace mechsim::launch

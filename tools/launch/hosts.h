@@ -1,0 +1,34 @@
+// Where the participants of a scene run (docs/hosts.md): the scene's `hosts:` resolved to
+// IPv4 addresses, the launcher's own host found among them by this machine's addresses,
+// and each participant either local (the launcher starts it) or on another host (that
+// host's `mechsim agent` starts it).
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "mechsim/config/scene.h"
+
+namespace mechsim::launch {
+
+// This machine's IPv4 addresses (up interfaces, loopback included).
+std::vector<std::string> local_ipv4_addresses();
+// An IPv4 address as it is, or a host name resolved (getaddrinfo); throws std::runtime_error.
+std::string resolve_ipv4(const std::string& address_or_name);
+std::string join(const std::vector<std::string>& items, const std::string& separator);
+
+struct HostLayout {
+  bool multi_host = false;        // some participant runs on another host than the launcher
+  std::string launcher_host;      // the scene's name of this machine ("" when it has none)
+  std::string launcher_address;
+  std::map<std::string, std::string> address;  // host name -> IPv4 address
+  std::vector<std::string> peers;              // addresses of the launcher's host and every host in use
+  std::map<std::string, std::string> remote;   // participant -> address of its host's agent (absent: local)
+};
+
+// Throws config::ConfigError (file, key, what was expected) for a host that does not
+// resolve, or when participants sit on other hosts and this machine is none of the hosts.
+HostLayout plan_hosts(const config::Scene& scene);
+
+}  // namespace mechsim::launch
