@@ -29,10 +29,10 @@ done
 rate() { grep -o '"steps_per_second": *[0-9.e+]*' "$1" | head -1 | sed 's/.*: *//'; }
 printf "%-6s %-14s %-14s\n" run "single host" "three hosts"
 for i in $(seq 1 "$runs"); do
-  "$mechsim" launch "$scene" --dds "$vendor" --no-plot --no-progress --runs-dir "$work/single" --json "$work/s$i.json" > /dev/null
+  "$mechsim" launch "$scene" --dds "$vendor" --no-plot --no-progress --runs-dir "$work/single" --json "$work/s$i.json" > /dev/null 2>&1
   tools/netns-hosts.sh exec 1 "$mechsim" launch "$scene" --dds "$vendor" --no-plot --no-progress --runs-dir "$work/multi" \
     --json "$work/m$i.json" --set dds.domain=7 \
     --set hosts.a.address=10.77.0.1 --set hosts.b.address=10.77.0.2 --set hosts.c.address=10.77.0.3 \
-    --set participants.servo.host=a --set participants.tacho.host=b --set participants.slide.host=c > /dev/null
+    --set participants.servo.host=a --set participants.tacho.host=b --set participants.slide.host=c > /dev/null 2>&1
   printf "%-6s %-14.0f %-14.0f\n" "$i" "$(rate "$work/s$i.json")" "$(rate "$work/m$i.json")"
 done

@@ -13,6 +13,7 @@ packages=(
   libgtest-dev libbenchmark-dev           # tests, benchmarks
   gnuplot-nox                             # PNG plots
   libzstd-dev liblz4-dev                  # MCAP chunk compression
+  iproute2 iptables                       # the multi-host test bed (tools/netns-hosts.sh)
 )
 # node + npm run the third-party MCAP reader test; machines that already have a Node.js
 # (e.g. from NodeSource, whose nodejs conflicts with Debian's npm) keep theirs.
