@@ -62,6 +62,7 @@ struct AgentRun {
   std::map<std::string, std::uint64_t> log_sent;  // node -> bytes of its log already sent
   std::set<std::string> exit_reported;
   Clock::time_point last_heartbeat = Clock::now();
+  double heartbeat_timeout_s = 5.0;
 };
 
 class Agent {
@@ -120,6 +121,7 @@ void Agent::start_node(const transport::AgentMessage& m) {
   if (!slot) {
     slot = std::make_unique<AgentRun>();
     slot->run_id = m.run_id;
+    slot->heartbeat_timeout_s = opt_.heartbeat_timeout_s;
   }
   AgentRun& run = *slot;
   run.last_heartbeat = Clock::now();
@@ -155,7 +157,10 @@ void Agent::start_node(const transport::AgentMessage& m) {
     run.folder = fs::path(opt_.work_dir) / folder_name;
     fs::create_directories(run.folder / "dds");
     write_file(run.folder / "scene.yaml", request.value("scene_yaml", ""));
-    transport::UnicastNetwork network{request.value("address", ""), request.value("peers", std::vector<std::string>{})};
+    transport::UnicastNetwork network{request.value("address", ""), request.value("peers", std::vector<std::string>{}),
+                                      request.value("lease_s", 5.0)};
+    // A cut the run is meant to survive must not make this agent stop its nodes either.
+    run.heartbeat_timeout_s = std::max(opt_.heartbeat_timeout_s, request.value("partition_grace_s", 0.0) + 1.0);
     if (network.address.empty() || addresses_.count(network.address) == 0)
       return refuse("the request names address '" + network.address + "', which is not one of this host's");
     write_file(run.folder / "dds/cyclonedds.xml", transport::cyclone_unicast_config(network));
@@ -320,8 +325,8 @@ int Agent::run() {
       AgentRun& run = *it->second;
       report_exits(run);
       if (seconds_since(last_logs) > 0.2) stream_logs(run);
-      if (seconds_since(run.last_heartbeat) > opt_.heartbeat_timeout_s) {
-        stop_run(run, "no heartbeat from the launcher for " + std::to_string(opt_.heartbeat_timeout_s) + " s");
+      if (seconds_since(run.last_heartbeat) > run.heartbeat_timeout_s) {
+        stop_run(run, "no heartbeat from the launcher for " + std::to_string(run.heartbeat_timeout_s) + " s");
         log_line("run " + std::to_string(run.run_id) + ": forgotten; its files stay in " + run.folder.string());
         finished_.insert(run.run_id);
         it = runs_.erase(it);

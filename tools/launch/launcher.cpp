@@ -53,6 +53,10 @@ namespace {
 std::atomic<int> g_interrupt{0};
 void on_interrupt(int sig) { g_interrupt.store(sig); }
 
+// The DDS lease of a multi-host run: a cut shorter than the partition grace must not make
+// the participants forget each other (what was written meanwhile would be lost for good).
+double lease_for(const config::Scene& scene) { return scene.faults.partition_grace + 3.0; }
+
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 std::string hex_id(std::uint64_t id) {
@@ -222,7 +226,8 @@ RunOutcome Run::run_nodes() {
       // Its host's agent starts it with the same arguments, in a run folder of its own.
       const json request{{"type", node.type->name}, {"scene_yaml", scene_text},
                          {"run_folder", fs::path(run_dir_).filename().string()}, {"domain", domain_},
-                         {"address", remote->second}, {"peers", hosts_.peers}};
+                         {"address", remote->second}, {"peers", hosts_.peers}, {"lease_s", lease_for(scene_)},
+                         {"partition_grace_s", scene_.faults.partition_grace}};
       processes_.start_remote(node.name(), remote->second, request.dump(), *agents_);
       watch_[node.name()] = {};
       continue;
@@ -335,9 +340,27 @@ RunOutcome Run::run_nodes() {
       out.exit_code = 130;
       break;
     }
+    // A node on another host that has gone silent for the partition grace: the network
+    // between here and its host is cut (or the host is down). Name every such node.
+    {
+      std::string unreachable, first;
+      for (auto& p : processes_.processes()) {
+        const auto& w = watch_[p.name];
+        if (p.exited || p.host.empty() || seconds_since(w.last_seen) <= scene_.faults.partition_grace / 2) continue;
+        const auto* spec = scene_.find_participant(p.name);
+        unreachable += (unreachable.empty() ? "" : ", ") + ("'" + p.name + "' on host " + spec->host + " (" + p.host + ")");
+        if (seconds_since(w.last_seen) > scene_.faults.partition_grace && first.empty()) first = p.name;
+      }
+      if (!first.empty()) {
+        char why[128];
+        std::snprintf(why, sizeof why, ": no status for more than %g s (faults.partition_grace; docs/faults.md)", scene_.faults.partition_grace);
+        fail(out, first, "unreachable: node " + unreachable + why);
+      }
+    }
+    if (!out.reason.empty()) break;
     for (auto& p : processes_.processes()) {
       const auto& w = watch_[p.name];
-      if (!p.exited && seconds_since(w.last_seen) > scene_.hang_timeout) {
+      if (!p.exited && p.host.empty() && seconds_since(w.last_seen) > scene_.hang_timeout) {
         std::ostringstream why;
         // The last step is added once, by the failure report (from the node's output log).
         why << "node '" << p.name << "' hung: no status for " << scene_.hang_timeout << " s";
@@ -415,6 +438,7 @@ json Run::summarise(const RunOutcome& out) {
   s["domain_id"] = domain_;
   s["dds_vendor"] = scene_.vendor;  // the launcher's own participant
   s["mode"] = scene_.mode;
+  s["redundant_samples"] = scene_.faults.redundant();
   s["status"] = out.ok ? "ok" : "failed";
   s["macro_step_s"] = scene_.time.step;
   s["simulated_time_s"] = scene_.time.end - scene_.time.start;
@@ -504,7 +528,7 @@ int Run::execute() {
   if (hosts_.multi_host) {
     // The hosts' interfaces and unicast peers for both vendors, generated from the scene,
     // for the launcher, its recorder and the local nodes (the agents write their own).
-    const transport::UnicastNetwork network{hosts_.launcher_address, hosts_.peers};
+    const transport::UnicastNetwork network{hosts_.launcher_address, hosts_.peers, lease_for(scene_)};
     fs::create_directories(run_dir_ + "/dds");
     std::ofstream(run_dir_ + "/dds/cyclonedds.xml") << transport::cyclone_unicast_config(network);
     std::ofstream(run_dir_ + "/dds/fastdds.xml") << transport::fastdds_unicast_profile(network);
@@ -741,10 +765,11 @@ int launch(const LaunchOptions& options) {
   std::signal(SIGTERM, on_interrupt);
   config::Scene scene;
   std::optional<cosim::ScenePlan> plan;
+  std::vector<std::string> overrides = options.overrides;  // the user's, and those the launcher adds
   try {
-    scene = config::load_scene(options.scene_path, options.overrides);
+    scene = config::load_scene(options.scene_path, overrides);
     if (!options.dds_layout.empty()) {
-      std::vector<std::string> names, overrides = options.overrides;
+      std::vector<std::string> names;
       for (const auto& p : scene.participants) names.push_back(p.name);
       for (auto& o : dds_layout_overrides(names, options.dds_layout)) overrides.push_back(std::move(o));
       scene = config::load_scene(options.scene_path, overrides);
@@ -795,6 +820,13 @@ int launch(const LaunchOptions& options) {
   HostLayout hosts;
   try {
     hosts = plan_hosts(scene);
+    if (hosts.multi_host && scene.faults.redundant_samples == "auto") {
+      // Across a network packets get lost: every sample goes twice (docs/faults.md). The
+      // resolved scene in the run folder carries the decision to every node.
+      overrides.push_back("faults.redundant_samples=true");
+      scene = config::load_scene(options.scene_path, overrides);
+      plan.emplace(cosim::ScenePlan::build(scene));
+    }
     for (const std::string& text : options.replays) {
       const ReplayRequest r = parse_replay_request(text);
       if (hosts.remote.count(r.node))

@@ -20,7 +20,7 @@ std::vector<std::string> SceneArgs::overrides() const {
     const std::string head = key.substr(0, key.find('.'));
     // Keys that start with a top-level scene section are taken as they are; anything else
     // is <participant>.<param>.
-    static const char* const sections[] = {"participants", "time", "dds", "hosts", "realtime", "record", "design", "report", "compare"};
+    static const char* const sections[] = {"participants", "time", "dds", "hosts", "faults", "realtime", "record", "design", "report", "compare"};
     bool scene_key = key.find('.') == std::string::npos || head.rfind("connections", 0) == 0;
     for (const char* section : sections) scene_key = scene_key || head == section;
     out.push_back(scene_key ? s : "participants." + head + ".params" + s.substr(head.size()));

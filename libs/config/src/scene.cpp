@@ -152,7 +152,7 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
                                                           o.find('=') == std::string::npos ? "" : o.substr(o.find('=') + 1));
   const ConfigNode& root = scene.root;
   if (!root.is_map()) root.fail("expected a scene: a map with keys scene, time, participants, ...");
-  root.allow_only({"scene", "description", "time", "mode", "rtf", "realtime", "dds", "hosts", "hang_timeout",
+  root.allow_only({"scene", "description", "time", "mode", "rtf", "realtime", "dds", "hosts", "faults", "hang_timeout",
                    "participants", "connections", "compare", "report", "record", "design"});
 
   scene.name = root.string("scene");
@@ -181,6 +181,12 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
       if (d < 0 || d > 232) dds->child("domain").fail("expected 'auto' or a domain id in 0..232");
       scene.domain_id = static_cast<int>(d);
     }
+  }
+  if (auto faults = root.optional_child("faults")) {
+    if (!faults->is_map()) faults->fail("expected a map {redundant_samples: auto|true|false, partition_grace: 2 s}");
+    faults->allow_only({"redundant_samples", "partition_grace"});
+    scene.faults.partition_grace = faults->positive_quantity_or("partition_grace", dim::time, scene.faults.partition_grace);
+    if (faults->has("redundant_samples")) scene.faults.redundant_samples = faults->choice("redundant_samples", {"auto", "true", "false"});
   }
   scene.design = root.optional_child("design");
   if (auto rec = root.optional_child("record")) scene.record = parse_record(*rec);

@@ -114,6 +114,15 @@ void write_realtime_figures(const std::string& path, const Pacer& pacer) {
   std::fclose(out);
 }
 
+// "participant 'slide' (topic slide/state) on host c (10.77.0.3)" for failure messages.
+std::string describe_partner(const config::Scene& scene, const std::string& participant, const std::string& topic) {
+  std::string out = "participant '" + participant + "' (topic " + topic + ")";
+  const config::ParticipantSpec* p = scene.find_participant(participant);
+  if (p && !p->host.empty())
+    if (const config::HostSpec* h = scene.find_host(p->host)) out += " on host " + h->name + " (" + h->address + ")";
+  return out;
+}
+
 }  // namespace
 
 int run_node(ScenePlan& plan, const std::string& node_name, transport::Participant& participant,
@@ -136,6 +145,20 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
     if (node.cut) {
       cut_writer = participant.create_writer(node.cut->topic, *node.cut->type);
       cut_reader = participant.create_reader(node.cut->partner_topic, *node.cut->type);
+    }
+    // Redundant samples (docs/faults.md): every sample also on the best-effort twin topic;
+    // whichever copy of a step arrives first is used, the other is a duplicate the input
+    // channels drop. Not part of readiness: a twin that loses its first samples costs nothing.
+    std::unique_ptr<transport::SampleWriter> twin_writer, twin_cut_writer;
+    std::vector<std::unique_ptr<transport::SampleReader>> twin_readers;
+    std::unique_ptr<transport::SampleReader> twin_cut_reader;
+    if (scene.faults.redundant()) {
+      twin_writer = participant.create_redundant_writer(node.topic, *node.type->publishes);
+      for (const auto& edge : node.inputs) twin_readers.push_back(participant.create_redundant_reader(edge.topic, *edge.type));
+      if (node.cut) {
+        twin_cut_writer = participant.create_redundant_writer(node.cut->topic, *node.cut->type);
+        twin_cut_reader = participant.create_redundant_reader(node.cut->partner_topic, *node.cut->type);
+      }
     }
 
     NodeStepper stepper(node, scene.time);
@@ -199,9 +222,14 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
         transport::SampleHeader h;
         while (readers[e]->take(h, received))
           if (h.run_id == options.run_id && h.step + 2 >= stepper.step()) stepper.channel(e).add(h.step, received);
+        // The twin copy: a step already there (or consumed) is dropped as a duplicate.
+        while (e < twin_readers.size() && twin_readers[e] && twin_readers[e]->take(h, received))
+          if (h.run_id == options.run_id && h.step >= stepper.step()) stepper.channel(e).add(h.step, received);
       }
       transport::SampleHeader h;
       while (cut_reader && cut_reader->take(h, received))
+        if (h.run_id == options.run_id) stepper.add_partner_prediction(h.step, received);
+      while (twin_cut_reader && twin_cut_reader->take(h, received))
         if (h.run_id == options.run_id) stepper.add_partner_prediction(h.step, received);
     };
     std::vector<double> prediction;
@@ -209,6 +237,7 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
       if (!stepper.prediction_due()) return;
       stepper.predict(prediction);
       cut_writer->write({options.run_id, stepper.step(), stepper.time()}, prediction);
+      if (twin_cut_writer) twin_cut_writer->write({options.run_id, stepper.step(), stepper.time()}, prediction);
     };
     auto check_control = [&] {
       while (auto c = control->take())
@@ -261,6 +290,7 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
       header.t = stepper.time();
       if (pacer) pacer->wait_for_deadline(header.step, rt.spin_wait ? rt.spin_limit : 0.0);
       writer->write(header, values);
+      if (twin_writer) twin_writer->write(header, values);
       if (pacer) pace(header.step);
       if (log) log->append(header.t, stepper.outputs());
       beat.status().header.step = header.step;
@@ -281,6 +311,27 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
         sched_yield();
       }
       return false;
+    };
+    // A partition (docs/faults.md): waiting longer than the grace for a partner's sample
+    // ends the run, naming the partner and its host; a shorter wait is just a stall.
+    auto waiting_since = Clock::now();
+    std::uint64_t waiting_step = UINT64_MAX;
+    auto check_partition = [&] {
+      if (stepper.step() != waiting_step || !initialised) {
+        waiting_step = initialised ? stepper.step() : UINT64_MAX;
+        waiting_since = Clock::now();
+        return;
+      }
+      const double waited = std::chrono::duration<double>(Clock::now() - waiting_since).count();
+      if (waited <= scene.faults.partition_grace) return;
+      std::string missing;
+      for (std::size_t e = 0; e < node.inputs.size(); ++e)
+        if (!stepper.channel(e).ready_for_step(stepper.step())) missing += (missing.empty() ? "" : ", ") + describe_partner(scene, node.inputs[e].from, node.inputs[e].topic);
+      if (node.cut && missing.empty()) missing = describe_partner(scene, node.cut->partner, node.cut->partner_topic);
+      char buf[96];
+      std::snprintf(buf, sizeof buf, "no sample for step %llu for %.1f s (faults.partition_grace %g s) from ",
+                    static_cast<unsigned long long>(stepper.step()), waited, scene.faults.partition_grace);
+      throw std::runtime_error(std::string("unreachable: ") + buf + missing);
     };
     for (;;) {
       drain();
@@ -303,6 +354,7 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
       }
       if (stepper.finished()) break;
       if (stop_requested() || check_control()) return 3;
+      check_partition();
       copy_stats(stepper.solver_stats(), beat.status());
       if (pacer && beat.until_next().count() == 0) {  // the figures walk the histogram: heartbeat pace only
         const RealtimeFigures f = pacer->figures();

@@ -17,6 +17,9 @@ const char* to_string(NodeState s) {
   return "unknown";
 }
 
+std::unique_ptr<SampleWriter> Participant::create_redundant_writer(const std::string&, const TopicType&) { return nullptr; }
+std::unique_ptr<SampleReader> Participant::create_redundant_reader(const std::string&, const TopicType&) { return nullptr; }
+
 std::unique_ptr<AgentWriter> Participant::create_agent_writer(const std::string& topic) {
   throw std::logic_error("the " + vendor() + " transport has no agent topics (" + topic + "): multi-host runs need a DDS vendor");
 }

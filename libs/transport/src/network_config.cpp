@@ -1,5 +1,6 @@
 #include "mechsim/transport/network_config.h"
 
+#include <cmath>
 #include <string>
 
 namespace mechsim::transport {
@@ -23,8 +24,14 @@ std::string cyclone_unicast_config(const UnicastNetwork& network) {
          "      <MaxAutoParticipantIndex>" + std::to_string(kMaxParticipantsPerHost - 1) + "</MaxAutoParticipantIndex>\n"
          "      <Peers>\n" + peers +
          "      </Peers>\n"
-         "      <LeaseDuration>2s</LeaseDuration>\n"
+         "      <LeaseDuration>" + std::to_string(static_cast<int>(std::ceil(network.lease_s * 1000))) + "ms</LeaseDuration>\n"
          "    </Discovery>\n"
+         "    <!-- fast repair of lost samples, as config/dds/cyclonedds-loopback.xml (docs/faults.md) -->\n"
+         "    <Internal>\n"
+         "      <HeartbeatInterval min=\"1ms\" minsched=\"1ms\" max=\"10ms\">1ms</HeartbeatInterval>\n"
+         "      <NackDelay>0ms</NackDelay>\n"
+         "      <AutoReschedNackDelay>2ms</AutoReschedNackDelay>\n"
+         "    </Internal>\n"
          "  </Domain>\n"
          "</CycloneDDS>\n";
 }
@@ -57,6 +64,9 @@ std::string fastdds_unicast_profile(const UnicastNetwork& network) {
          "          <transport_id>mechsim_udp_host</transport_id>\n"
          "        </userTransports>\n"
          "        <builtin>\n"
+         "          <discovery_config>\n"
+         "            <leaseDuration><sec>" + std::to_string(static_cast<int>(std::ceil(network.lease_s))) + "</sec></leaseDuration>\n"
+         "          </discovery_config>\n"
          "          <metatrafficUnicastLocatorList>\n"
          "            <locator><udpv4><address>" + network.address + "</address></udpv4></locator>\n"
          "          </metatrafficUnicastLocatorList>\n"

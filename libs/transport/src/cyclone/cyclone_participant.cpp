@@ -325,24 +325,38 @@ dds_entity_t CycloneParticipant::attach_reader(dds_entity_t reader) {
   return reader;
 }
 
-std::unique_ptr<SampleWriter> CycloneParticipant::create_writer(const std::string& topic_name,
-                                                                const TopicType& type) {
+std::unique_ptr<SampleWriter> CycloneParticipant::data_writer(const std::string& topic_name, const TopicType& type, bool redundant) {
   const CycloneType& ct = cyclone_type(type);
   Qos qos;
-  set_qos(qos, QosKind::data);
-  dds_entity_t w = check(dds_create_writer(participant_, topic(topic_name, ct.descriptor), qos.q, nullptr),
-                         "create writer on " + topic_name);
+  set_qos(qos, redundant ? QosKind::redundant : QosKind::data);
+  const std::string name = redundant ? redundant_topic(topic_name) : topic_name;
+  dds_entity_t w = check(dds_create_writer(participant_, topic(name, ct.descriptor), qos.q, nullptr), "create writer on " + name);
   return std::make_unique<CycloneSampleWriter>(w, ct);
 }
 
-std::unique_ptr<SampleReader> CycloneParticipant::create_reader(const std::string& topic_name,
-                                                                const TopicType& type) {
+std::unique_ptr<SampleReader> CycloneParticipant::data_reader(const std::string& topic_name, const TopicType& type, bool redundant) {
   const CycloneType& ct = cyclone_type(type);
   Qos qos;
-  set_qos(qos, QosKind::data);
-  dds_entity_t r = check(dds_create_reader(participant_, topic(topic_name, ct.descriptor), qos.q, nullptr),
-                         "create reader on " + topic_name);
+  set_qos(qos, redundant ? QosKind::redundant : QosKind::data);
+  const std::string name = redundant ? redundant_topic(topic_name) : topic_name;
+  dds_entity_t r = check(dds_create_reader(participant_, topic(name, ct.descriptor), qos.q, nullptr), "create reader on " + name);
   return std::make_unique<CycloneSampleReader>(attach_reader(r), ct);
+}
+
+std::unique_ptr<SampleWriter> CycloneParticipant::create_writer(const std::string& topic_name, const TopicType& type) {
+  return data_writer(topic_name, type, false);
+}
+
+std::unique_ptr<SampleReader> CycloneParticipant::create_reader(const std::string& topic_name, const TopicType& type) {
+  return data_reader(topic_name, type, false);
+}
+
+std::unique_ptr<SampleWriter> CycloneParticipant::create_redundant_writer(const std::string& topic_name, const TopicType& type) {
+  return data_writer(topic_name, type, true);
+}
+
+std::unique_ptr<SampleReader> CycloneParticipant::create_redundant_reader(const std::string& topic_name, const TopicType& type) {
+  return data_reader(topic_name, type, true);
 }
 
 std::unique_ptr<ControlWriter> CycloneParticipant::create_control_writer() {

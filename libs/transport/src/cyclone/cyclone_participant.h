@@ -17,6 +17,8 @@ class CycloneParticipant final : public Participant {
   ~CycloneParticipant() override;
   std::unique_ptr<SampleWriter> create_writer(const std::string& topic, const TopicType& type) override;
   std::unique_ptr<SampleReader> create_reader(const std::string& topic, const TopicType& type) override;
+  std::unique_ptr<SampleWriter> create_redundant_writer(const std::string& topic, const TopicType& type) override;
+  std::unique_ptr<SampleReader> create_redundant_reader(const std::string& topic, const TopicType& type) override;
   std::unique_ptr<ControlWriter> create_control_writer() override;
   std::unique_ptr<ControlReader> create_control_reader() override;
   std::unique_ptr<StatusWriter> create_status_writer() override;
@@ -30,6 +32,8 @@ class CycloneParticipant final : public Participant {
  private:
   dds_entity_t topic(const std::string& name, const dds_topic_descriptor_t* desc);
   dds_entity_t attach_reader(dds_entity_t reader);
+  std::unique_ptr<SampleWriter> data_writer(const std::string& topic, const TopicType& type, bool redundant);
+  std::unique_ptr<SampleReader> data_reader(const std::string& topic, const TopicType& type, bool redundant);
   dds_entity_t participant_ = 0;
   dds_entity_t waitset_ = 0;
   dds_entity_t guard_ = 0;

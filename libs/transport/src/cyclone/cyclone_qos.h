@@ -15,15 +15,20 @@ struct Qos {
   ~Qos() { dds_delete_qos(q); }
 };
 
-enum class QosKind { data, control, status, agent };
+enum class QosKind { data, redundant, control, status, agent };
 
 // data: RELIABLE, KEEP_ALL, VOLATILE; control: RELIABLE, TRANSIENT_LOCAL, KEEP_LAST 1;
-// status: BEST_EFFORT, KEEP_LAST 256; agent: RELIABLE, KEEP_ALL, VOLATILE.
+// redundant: BEST_EFFORT, KEEP_LAST 64; status: BEST_EFFORT, KEEP_LAST 256; agent: RELIABLE, KEEP_ALL, VOLATILE.
 inline void set_qos(Qos& qos, QosKind kind) {
   switch (kind) {
     case QosKind::data:
       dds_qset_reliability(qos.q, DDS_RELIABILITY_RELIABLE, DDS_SECS(30));
       dds_qset_history(qos.q, DDS_HISTORY_KEEP_ALL, 0);
+      dds_qset_durability(qos.q, DDS_DURABILITY_VOLATILE);
+      break;
+    case QosKind::redundant:  // the best-effort twin of a data topic
+      dds_qset_reliability(qos.q, DDS_RELIABILITY_BEST_EFFORT, 0);
+      dds_qset_history(qos.q, DDS_HISTORY_KEEP_LAST, 64);
       dds_qset_durability(qos.q, DDS_DURABILITY_VOLATILE);
       break;
     case QosKind::control:

@@ -25,6 +25,8 @@ class FastParticipant final : public Participant {
   ~FastParticipant() override;
   std::unique_ptr<SampleWriter> create_writer(const std::string& topic, const TopicType& type) override;
   std::unique_ptr<SampleReader> create_reader(const std::string& topic, const TopicType& type) override;
+  std::unique_ptr<SampleWriter> create_redundant_writer(const std::string& topic, const TopicType& type) override;
+  std::unique_ptr<SampleReader> create_redundant_reader(const std::string& topic, const TopicType& type) override;
   std::unique_ptr<ControlWriter> create_control_writer() override;
   std::unique_ptr<ControlReader> create_control_reader() override;
   std::unique_ptr<StatusWriter> create_status_writer() override;

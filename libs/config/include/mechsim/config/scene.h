@@ -115,6 +115,20 @@ struct RealtimeSpec {
   double spin_limit = 200e-6;           // s of spinning per wait
 };
 
+// `faults:` — what a run does about lost packets and cut links (docs/faults.md).
+struct FaultsSpec {
+  // Every data sample also goes out on a best-effort twin topic, and a reader takes
+  // whichever copy comes first: a lost packet then costs nothing unless both are lost.
+  // "auto": on for multi-host runs (the launcher writes the decision into the run's
+  // resolved scene), off on one host, where loopback loses nothing and the copy costs time.
+  std::string redundant_samples = "auto";  // auto | true | false
+  bool redundant() const { return redundant_samples == "true"; }
+  // A partner silent for longer than this (a cut link, an unreachable host) ends the run,
+  // naming it; a shorter cut only stalls the run, which then resumes unchanged.
+  double partition_grace = 2.0;  // s
+  std::string key_path = "faults";
+};
+
 // `record:` — the launcher records the run's topics into an MCAP file (docs/recording.md).
 // `record: true` takes every default.
 struct RecordSpec {
@@ -144,6 +158,7 @@ struct Scene {
   // ignored by a time run.
   std::optional<ConfigNode> design;
   std::optional<RecordSpec> record;
+  FaultsSpec faults;
   ConfigNode root;  // the whole document (with overrides applied)
 
   const ParticipantSpec* find_participant(const std::string& name) const;

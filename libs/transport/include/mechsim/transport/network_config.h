@@ -14,6 +14,10 @@ namespace mechsim::transport {
 struct UnicastNetwork {
   std::string address;              // this host's IPv4 address on the run's network
   std::vector<std::string> peers;   // every host's IPv4 address (this one may be among them)
+  // How long a silent participant counts as alive: longer than a cut the run should
+  // survive (faults.partition_grace), or its endpoints are dropped and what was written in
+  // the meantime is lost for good.
+  double lease_s = 5.0;
 };
 
 // Most DDS participants on one host of a multi-host run; unicast discovery reaches the
@@ -21,7 +25,7 @@ struct UnicastNetwork {
 inline constexpr int kMaxParticipantsPerHost = 24;
 
 // A CYCLONEDDS_URI document: <Interfaces><NetworkInterface address=.../>, AllowMulticast
-// false, ParticipantIndex auto, Peers, and the 2 s lease of the loopback configuration.
+// false, ParticipantIndex auto, Peers, the lease, fast repair of lost samples.
 std::string cyclone_unicast_config(const UnicastNetwork& network);
 
 // A FASTRTPS_DEFAULT_PROFILES_FILE document: UDPv4 restricted to the address, built-in

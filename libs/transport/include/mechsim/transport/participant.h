@@ -85,6 +85,13 @@ class Participant {
   virtual ~Participant() = default;
   virtual std::unique_ptr<SampleWriter> create_writer(const std::string& topic, const TopicType& type) = 0;
   virtual std::unique_ptr<SampleReader> create_reader(const std::string& topic, const TopicType& type) = 0;
+  // The best-effort twin of a data topic (redundant_topic(topic); BEST_EFFORT, KEEP_LAST
+  // 64): a node that publishes every sample on both lets its partners take whichever copy
+  // arrives first, so a lost packet costs nothing unless both copies are lost
+  // (docs/faults.md). nullptr where the backend has no network to lose packets on
+  // (in-process).
+  virtual std::unique_ptr<SampleWriter> create_redundant_writer(const std::string& topic, const TopicType& type);
+  virtual std::unique_ptr<SampleReader> create_redundant_reader(const std::string& topic, const TopicType& type);
   virtual std::unique_ptr<ControlWriter> create_control_writer() = 0;
   virtual std::unique_ptr<ControlReader> create_control_reader() = 0;
   virtual std::unique_ptr<StatusWriter> create_status_writer() = 0;

@@ -34,5 +34,7 @@ inline constexpr const char* kStatusTopic = "mechsim/status";
 // The agent conversation of multi-host runs (idl/agent.idl, docs/hosts.md).
 inline constexpr const char* kAgentRequestTopic = "mechsim/agent/request";
 inline constexpr const char* kAgentReplyTopic = "mechsim/agent/reply";
+// The best-effort twin of a data topic (Participant::create_redundant_writer).
+inline std::string redundant_topic(const std::string& topic) { return topic + "/redundant"; }
 
 }  // namespace mechsim::transport
