@@ -1,0 +1,138 @@
+// Faults survived (docs/faults.md), on the network-namespace bed (host_bed.h):
+//  - 5 % of the packets arriving at every host dropped at random: nc_slide_loop and
+//    cam_press across hosts on Cyclone, Fast DDS and mixed give node outputs byte-identical
+//    to the lossless single-host run (the speed under loss is measured by
+//    tools/bench-faults.sh, not asserted);
+//  - a host cut off for less than the partition grace: the run stalls, resumes and ends
+//    byte-identical; cut off for longer: the run ends with exit 1 naming the unreachable
+//    participant and its host, and no node process is left on any host.
+// Label `faults` (root; run by .ci/run). Without root every test prints as skipped.
+#include "host_bed.h"
+
+namespace mechsim::testing {
+namespace {
+
+using nlohmann::json;
+
+struct LossCase {
+  const char* scene;
+  std::vector<std::string> participants;
+  const char* layout;
+  const char* end;  // shortened: loss makes the run slower
+};
+void PrintTo(const LossCase& c, std::ostream* os) { *os << c.scene << " on " << c.layout; }
+
+class UnderLoss : public HostBed, public ::testing::WithParamInterface<LossCase> {};
+
+void expect_identical_outputs(const fs::path& a, const fs::path& b, const std::vector<std::string>& participants) {
+  for (const auto& p : participants) {
+    const std::string first = slurp((a / (p + ".outputs.bin")).string());
+    const std::string second = slurp((b / (p + ".outputs.bin")).string());
+    EXPECT_GT(first.size(), 1000u) << p;
+    EXPECT_TRUE(first == second) << p << ".outputs.bin differs from the undisturbed single-host run (" << first.size() << " vs "
+                                 << second.size() << " bytes)";
+  }
+}
+
+TEST_P(UnderLoss, FivePercentLossOnEveryLinkLeavesTheOutputsByteIdentical) {
+  const LossCase& c = GetParam();
+  const std::string layout = c.layout;
+  if ((layout != "fastdds" && !compiled_in("cyclone")) || (layout != "cyclone" && !compiled_in("fastdds")))
+    GTEST_SKIP() << "layout '" << layout << "' needs a DDS vendor this build left out";
+  start_agents(static_cast<int>(c.participants.size()));
+  drop_randomly(0.05);
+  const fs::path single = dir_ / "single";
+  const CommandResult one = run({kMechsim, "launch", kScenes + c.scene, "--runs-dir", single.string(), "--no-plot", "--no-progress",
+                                 "--dds", layout, "--end", c.end},
+                                single.string() + ".log", 240);
+  ASSERT_EQ(one.exit_code, 0) << one.output;
+  const fs::path lossy = dir_ / "lossy";
+  const CommandResult r = launch_across(c.scene, c.participants, layout, lossy, {"--end", c.end});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const json summary = json::parse(slurp((only_run_folder(lossy) / "summary.json").string()));
+  EXPECT_EQ(summary["redundant_samples"], true) << "a multi-host run sends every sample twice by default";
+  expect_identical_outputs(only_run_folder(single), only_run_folder(lossy), c.participants);
+}
+
+std::string loss_case_name(const ::testing::TestParamInfo<LossCase>& i) {
+  std::string s = std::string(i.param.scene) + "_" + i.param.layout;
+  for (char& ch : s)
+    if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+  return s;
+}
+
+const std::vector<std::string> kNc{"servo", "tacho", "slide"};
+const std::vector<std::string> kCam{"cam", "follower"};
+
+INSTANTIATE_TEST_SUITE_P(Scenes, UnderLoss,
+                         ::testing::Values(LossCase{"nc_slide_loop.yaml", kNc, "cyclone", "0.05 s"},
+                                           LossCase{"nc_slide_loop.yaml", kNc, "fastdds", "0.05 s"},
+                                           LossCase{"nc_slide_loop.yaml", kNc, "mixed", "0.05 s"},
+                                           LossCase{"cam_press.yaml", kCam, "cyclone", "2 s"},
+                                           LossCase{"cam_press.yaml", kCam, "fastdds", "2 s"},
+                                           LossCase{"cam_press.yaml", kCam, "mixed", "2 s"}),
+                         loss_case_name);
+
+// nc_slide_loop for 1 s of simulated time (40 000 steps, several seconds of wall time) with
+// the slide on host 3; host 3 is cut off once every node steps.
+class Partition : public HostBed {
+ protected:
+  pid_t start_long_run(const fs::path& runs) {
+    start_agents(3);
+    std::vector<std::string> argv{ip_command(), "netns", "exec", ns(1), kMechsim, "launch", kScenes + "nc_slide_loop.yaml",
+                                  "--runs-dir", runs.string(), "--no-plot", "--no-progress", "--end", "1 s",
+                                  "--set", "dds.domain=" + std::to_string(kDomain)};
+    for (int i = 0; i < 3; ++i)
+      argv.insert(argv.end(), {"--set", "hosts.h" + std::to_string(i + 1) + ".address=" + address(i + 1), "--set",
+                               "participants." + kNc[static_cast<std::size_t>(i)] + ".host=h" + std::to_string(i + 1)});
+    const pid_t launcher = spawn(argv, runs.string() + ".log");
+    // Stepping: the node on host 3 has written a good part of its output log.
+    for (int i = 0; i < 300; ++i) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      if (pids_in(ns(3)).size() >= 2 && slurp(runs.string() + ".log").find("folder") != std::string::npos) break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+    return launcher;
+  }
+};
+
+TEST_F(Partition, ACutShorterThanTheGraceStallsTheRunWhichEndsByteIdentical) {
+  const fs::path single = dir_ / "single";
+  const CommandResult one = run({kMechsim, "launch", kScenes + "nc_slide_loop.yaml", "--runs-dir", single.string(), "--no-plot",
+                                 "--no-progress", "--end", "1 s"},
+                                single.string() + ".log", 240);
+  ASSERT_EQ(one.exit_code, 0) << one.output;
+  const fs::path runs = dir_ / "cut";
+  const pid_t launcher = start_long_run(runs);
+  cut_host(3);
+  std::this_thread::sleep_for(std::chrono::milliseconds(1000));  // default grace: 2 s
+  heal_host(3);
+  const CommandResult r = wait_for(launcher, runs.string() + ".log", 240);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  expect_identical_outputs(only_run_folder(single), only_run_folder(runs), kNc);
+}
+
+TEST_F(Partition, ACutLongerThanTheGraceEndsTheRunNamingTheUnreachableHost) {
+  const fs::path runs = dir_ / "cut";
+  const pid_t launcher = start_long_run(runs);
+  cut_host(3);
+  const CommandResult r = wait_for(launcher, runs.string() + ".log", 120);
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("unreachable"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("'slide' on host h3 (10.77.0.3)"), std::string::npos) << r.output;
+  heal_host(3);
+  // No node left on any host: host 1's died with the launcher's stop, host 2's was stopped
+  // by its agent, host 3's ended on its own watchdog or its agent's heartbeat timeout.
+  bool clean = false;
+  for (int i = 0; i < 150 && !clean; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    clean = pids_in(ns(1)).empty() && pids_in(ns(2)).size() == 1 && pids_in(ns(3)).size() == 1;
+  }
+  EXPECT_TRUE(clean) << "processes left: host 1 " << pids_in(ns(1)).size() << ", host 2 " << pids_in(ns(2)).size() << ", host 3 "
+                     << pids_in(ns(3)).size() << " (agents count 1)";
+  const json summary = json::parse(slurp((only_run_folder(runs) / "summary.json").string()));
+  EXPECT_EQ(summary["status"], "failed");
+}
+
+}  // namespace
+}  // namespace mechsim::testing
