@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "mechsim/cosim/output_log.h"
+
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -150,6 +152,34 @@ TEST_F(Launch, CtrlCStopsEveryProcessCleanly) {
   CommandResult r = wait_for(launcher, log("c"), 10);
   ASSERT_FALSE(r.timed_out) << r.output;
   EXPECT_EQ(r.exit_code, 130) << r.output;
+}
+
+// Launcher loss (docs/faults.md): the nodes stop with it, and the run folder keeps what was
+// written: a summary marked incomplete, every log, output logs readable up to the last
+// whole row, a recording that `mechsim record --recover` completes.
+TEST_F(Launch, AKilledLauncherLeavesAReadableRunFolderAndNoProcess) {
+  pid_t launcher = spawn(launch_args("k", {"--end", "600 s", "--set", "record=true"}), log("k"));
+  ASSERT_TRUE(wait_until_running(dir_ / "k", "follower", 30));
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  ::kill(launcher, SIGKILL);
+  wait_for(launcher, log("k"), 10);
+  for (int i = 0; i < 100 && !processes_mentioning(dir_.string()).empty(); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  EXPECT_TRUE(processes_mentioning(dir_.string()).empty()) << "the nodes outlived their launcher";
+  const fs::path folder = run_folder("k");
+  const json s = json::parse(slurp((folder / "summary.json").string()));
+  EXPECT_EQ(s["status"], "incomplete");
+  EXPECT_NE(s["reason"].get<std::string>().find("record --recover"), std::string::npos);
+  for (const char* node : {"cam", "follower"}) {
+    EXPECT_TRUE(fs::exists(folder / (std::string(node) + ".log"))) << node;
+    const cosim::OutputLog out = cosim::read_output_log((folder / (std::string(node) + ".outputs.bin")).string());
+    EXPECT_GT(out.rows(), 10u) << node << ": the steps computed before the kill";
+  }
+  CommandResult fixed = run({kMechsim, "record", "--recover", (folder / "recording.mcap").string(), "-o",
+                             (dir_ / "recovered.mcap").string()},
+                            log("recover"), 60);
+  EXPECT_EQ(fixed.exit_code, 0) << fixed.output;
+  EXPECT_TRUE(fs::exists(dir_ / "recovered.mcap"));
 }
 
 TEST_F(Launch, ABadSceneIsRefusedBeforeAnyProcessStarts) {

@@ -518,6 +518,14 @@ int Run::execute() {
     f << "# resolved scene of run " << hex_id(run_id_) << " (from " << scene_.file << ", overrides applied)\n"
       << config::scene_to_yaml(scene_) << "\n";
   }
+  // Until the run ends this summary says so: a launcher that is killed leaves a run folder
+  // whose summary is marked incomplete, next to everything the nodes wrote (docs/faults.md).
+  tools::write_json_file(run_dir_ + "/summary.json",
+                         json{{"schema_version", tools::schema_version}, {"scene", scene_.name}, {"scene_file", scene_.file},
+                              {"run_id", hex_id(run_id_)}, {"run_dir", run_dir_}, {"status", "incomplete"},
+                              {"reason", "the launcher has not finished this run: it is still running, or it was killed. The node "
+                                         "logs and output logs hold what was written; `mechsim record --recover` completes a "
+                                         "recording (docs/faults.md)"}});
   std::optional<DomainLock> lock;
   if (scene_.domain_id) {
     domain_ = *scene_.domain_id;
