@@ -76,6 +76,7 @@ int node_main(const char* node_type, int argc, char** argv) {
     cosim::NodeRunOptions options;
     options.run_dir = run_dir;
     options.run_id = run_id;
+    options.domain = domain;
     options.stop_requested = &g_stop;
     return cosim::run_node(plan, node_name, *participant, options);
   } catch (const config::ConfigError& e) {

@@ -266,6 +266,11 @@ RunOutcome Run::run_nodes() {
         std::string reason = "node '" + p->name + "' " + p->describe_exit();
         std::string message = w.seen ? w.last.message : "";
         if (message.empty()) message = last_error_line(run_dir_ + "/" + p->name + ".log");
+        // The status carries at most 256 characters: the node's log has the whole message.
+        if (message.size() >= 250) {
+          const std::string line = last_error_line(run_dir_ + "/" + p->name + ".log");
+          if (const auto at = line.find(message.substr(0, 40)); at != std::string::npos) message = line.substr(at);
+        }
         if (!message.empty()) reason += ": " + message;
         if (message.find("diverged") != std::string::npos) reason += divergence_advice(p->name);
         fail(out, p->name, reason);

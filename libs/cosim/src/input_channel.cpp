@@ -1,5 +1,8 @@
 #include "mechsim/cosim/input_channel.h"
 
+#include <algorithm>
+#include <cstring>
+
 #include <stdexcept>
 
 namespace mechsim::cosim {
@@ -9,17 +12,20 @@ InputChannel::InputChannel(config::EdgeOrder order, config::Reconstruction recon
   spare_.reserve(16);  // a channel holds 3-4 samples at a time; room for bursts ahead
 }
 
-void InputChannel::add(std::uint64_t step, const std::vector<double>& values) {
-  if (samples_.count(step)) return;
+bool InputChannel::add(std::uint64_t step, const std::vector<double>& values) {
+  if (auto it = samples_.find(step); it != samples_.end())
+    return std::memcmp(it->second.data(), values.data(), sizeof(double) * std::min(values.size(), it->second.size())) == 0 &&
+           it->second.size() == values.size();
   if (spare_.empty()) {
     samples_.emplace(step, values);
-    return;
+    return true;
   }
   auto node = std::move(spare_.back());
   spare_.pop_back();
   node.key() = step;
   node.mapped().assign(values.begin(), values.end());  // same width every step: no reallocation
   samples_.insert(std::move(node));
+  return true;
 }
 
 const std::vector<double>* InputChannel::find(std::uint64_t step) const {

@@ -217,20 +217,61 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
 
     transport::SampleHeader header{options.run_id, 0, scene.time.start};
     std::vector<double> values, received;
+    // Nobody else writes into the run (docs/faults.md, 'Foreign writers'): each input topic
+    // has exactly the one writer the scene plans, its samples come one step after the other,
+    // and the redundant copy of a step carries the same values. Checked whenever samples
+    // were taken, before they are used.
+    std::vector<std::uint64_t> next_step(readers.size(), 0);
+    auto foreign = [&](const std::string& topic, const std::string& from, const std::string& what) {
+      throw std::runtime_error("foreign data on topic '" + topic + "' (the scene's only writer is participant '" + from + "'): " + what +
+                               "; a participant that does not belong to this run writes into its domain " +
+                               std::to_string(options.domain) + " (docs/faults.md)");
+    };
+    auto check_writers = [&](const transport::SampleReader* r, const std::string& topic, const std::string& from) {
+      if (r == nullptr || r->matched_writers() <= 1) return;
+      std::string ids;
+      for (const auto& id : r->matched_writer_ids()) ids += (ids.empty() ? "" : "; ") + id;
+      foreign(topic, from, std::to_string(r->matched_writers()) + " writers are matched" + (ids.empty() ? "" : " (" + ids + ")"));
+    };
     auto drain = [&] {
+      bool took = false;
       for (std::size_t e = 0; e < readers.size(); ++e) {
+        const InboundEdge& edge = node.inputs[e];
         transport::SampleHeader h;
-        while (readers[e]->take(h, received))
-          if (h.run_id == options.run_id && h.step + 2 >= stepper.step()) stepper.channel(e).add(h.step, received);
+        while (readers[e]->take(h, received)) {
+          took = true;
+          if (h.run_id != options.run_id) continue;
+          if (h.step != next_step[e])
+            foreign(edge.topic, edge.from, "step " + std::to_string(h.step) + " arrived where step " + std::to_string(next_step[e]) + " was due");
+          next_step[e] = h.step + 1;
+          if (h.step + 2 >= stepper.step() && !stepper.channel(e).add(h.step, received))
+            foreign(edge.topic, edge.from, "two different samples for step " + std::to_string(h.step));
+        }
         // The twin copy: a step already there (or consumed) is dropped as a duplicate.
-        while (e < twin_readers.size() && twin_readers[e] && twin_readers[e]->take(h, received))
-          if (h.run_id == options.run_id && h.step >= stepper.step()) stepper.channel(e).add(h.step, received);
+        while (e < twin_readers.size() && twin_readers[e] && twin_readers[e]->take(h, received)) {
+          took = true;
+          if (h.run_id == options.run_id && h.step >= stepper.step() && !stepper.channel(e).add(h.step, received))
+            foreign(transport::redundant_topic(edge.topic), edge.from, "two different samples for step " + std::to_string(h.step));
+        }
       }
       transport::SampleHeader h;
-      while (cut_reader && cut_reader->take(h, received))
+      while (cut_reader && cut_reader->take(h, received)) {
+        took = true;
         if (h.run_id == options.run_id) stepper.add_partner_prediction(h.step, received);
-      while (twin_cut_reader && twin_cut_reader->take(h, received))
+      }
+      while (twin_cut_reader && twin_cut_reader->take(h, received)) {
+        took = true;
         if (h.run_id == options.run_id) stepper.add_partner_prediction(h.step, received);
+      }
+      if (!took) return;
+      for (std::size_t e = 0; e < readers.size(); ++e) {
+        check_writers(readers[e].get(), node.inputs[e].topic, node.inputs[e].from);
+        if (e < twin_readers.size()) check_writers(twin_readers[e].get(), transport::redundant_topic(node.inputs[e].topic), node.inputs[e].from);
+      }
+      if (node.cut) {
+        check_writers(cut_reader.get(), node.cut->partner_topic, node.cut->partner);
+        check_writers(twin_cut_reader.get(), transport::redundant_topic(node.cut->partner_topic), node.cut->partner);
+      }
     };
     std::vector<double> prediction;
     auto predict_if_due = [&] {

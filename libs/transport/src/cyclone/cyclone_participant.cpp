@@ -2,6 +2,7 @@
 #include "cyclone_participant.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -63,6 +64,54 @@ int partner_readers_matched(dds_entity_t writer) {
     if (!tool) ++partners;
   }
   return partners;
+}
+
+std::string hex_guid(const unsigned char* v, std::size_t n) {
+  std::string out;
+  char b[3];
+  for (std::size_t i = 0; i < n; ++i) {
+    std::snprintf(b, sizeof b, "%02x", v[i]);
+    out += b;
+    if (i == 11) out += ':';  // GUID prefix : entity id
+  }
+  return out;
+}
+
+// "GUID <hex>, process <name> (pid <n>) on <host>" for every writer matched with `reader`;
+// the process and host come from the properties a Cyclone participant announces (other
+// vendors' participants announce none).
+std::vector<std::string> describe_matched_writers(dds_entity_t reader) {
+  std::vector<std::string> out;
+  std::vector<dds_instance_handle_t> handles(16);
+  const dds_return_t n = dds_get_matched_publications(reader, handles.data(), handles.size());
+  if (n <= 0) return out;
+  const dds_entity_t pp = dds_get_participant(reader);
+  const dds_entity_t participants = dds_create_reader(pp, DDS_BUILTIN_TOPIC_DCPSPARTICIPANT, nullptr, nullptr);
+  void* samples[64] = {};
+  dds_sample_info_t infos[64];
+  const dds_return_t np = participants > 0 ? dds_read(participants, samples, infos, 64, 64) : 0;
+  for (std::size_t i = 0; i < std::min<std::size_t>(static_cast<std::size_t>(n), handles.size()); ++i) {
+    dds_builtintopic_endpoint_t* w = dds_get_matched_publication_data(reader, handles[i]);
+    if (w == nullptr) continue;
+    std::string text = "GUID " + hex_guid(w->key.v, sizeof w->key.v);
+    for (dds_return_t j = 0; j < np; ++j) {
+      const auto* p = static_cast<const dds_builtintopic_participant_t*>(samples[j]);
+      if (!infos[j].valid_data || std::memcmp(p->key.v, w->participant_key.v, sizeof p->key.v) != 0) continue;
+      char *host = nullptr, *pid = nullptr, *name = nullptr;
+      if (p->qos && dds_qget_prop(p->qos, "__Hostname", &host) && dds_qget_prop(p->qos, "__Pid", &pid)) {
+        dds_qget_prop(p->qos, "__ProcessName", &name);
+        text += std::string(", process ") + (name ? name : "?") + " (pid " + pid + ") on " + host;
+      }
+      dds_free(host);
+      dds_free(pid);
+      dds_free(name);
+    }
+    dds_builtintopic_free_endpoint(w);
+    out.push_back(text);
+  }
+  if (np > 0) dds_return_loan(participants, samples, np);
+  if (participants > 0) dds_delete(participants);
+  return out;
 }
 
 int subscription_matched(dds_entity_t reader) {
@@ -134,6 +183,7 @@ class CycloneSampleReader final : public SampleReader {
     return true;
   }
   int matched_writers() const override { return subscription_matched(reader_); }
+  std::vector<std::string> matched_writer_ids() const override { return describe_matched_writers(reader_); }
 
  private:
   dds_entity_t reader_;

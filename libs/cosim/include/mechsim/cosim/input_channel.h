@@ -22,10 +22,12 @@ class InputChannel {
  public:
   InputChannel(config::EdgeOrder order, config::Reconstruction reconstruction, double t0, double step);
 
-  // Stores a received sample (a copy). Samples may arrive in any order; duplicates are
-  // ignored. Allocation-free in the steady state: the map nodes of discarded samples are
-  // kept and reused (a real-time step must not allocate, docs/realtime.md).
-  void add(std::uint64_t step, const std::vector<double>& values);
+  // Stores a received sample (a copy). Samples may arrive in any order; a duplicate (the
+  // redundant copy) is ignored when it carries the same values, and refused (false) when
+  // it does not: two different samples for one step mean a foreign writer. Allocation-free
+  // in the steady state: the map nodes of discarded samples are kept and reused (a
+  // real-time step must not allocate, docs/realtime.md).
+  bool add(std::uint64_t step, const std::vector<double>& values);
   // True when the channel holds what stepping k -> k+1 needs.
   bool ready_for_step(std::uint64_t k) const;
   // True when it holds what the initial outputs (step 0) need: only Gauss-Seidel edges

@@ -40,6 +40,9 @@ class SampleReader {
   // Takes the next sample if there is one (values resized to the field count).
   virtual bool take(SampleHeader& header, std::vector<double>& values) = 0;
   virtual int matched_writers() const = 0;
+  // The writers matched with this reader as far as the vendor tells: "GUID <hex>" and, for
+  // a Cyclone DDS writer, "process <name> (pid <n>) on <host>". For failure messages.
+  virtual std::vector<std::string> matched_writer_ids() const { return {}; }
 };
 
 class ControlWriter {
