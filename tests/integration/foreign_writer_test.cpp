@@ -63,5 +63,41 @@ TEST(ForeignWriter, ForgedServoCommandsFailTheRunNamingTheTopicAndTheWriter) {
   fs::remove_all(dir);
 }
 
+
+// A forged command on mechsim/control (here: abort, which would end the run quietly as if the
+// launcher had asked) is refused as foreign: the run fails naming the control topic.
+TEST(ForeignWriter, AForgedControlCommandFailsTheRunNamingTheControlTopic) {
+  const auto vendors = transport::available_vendors();
+  if (std::find(vendors.begin(), vendors.end(), "cyclone") == vendors.end()) GTEST_SKIP() << "needs Cyclone DDS";
+  launch::DomainLock domain = launch::DomainLock::acquire();
+  const fs::path dir = fs::temp_directory_path() / ("mechsim-foreign-control-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  ::setenv("CYCLONEDDS_URI", "file://" MECHSIM_SOURCE_DIR "/config/dds/cyclonedds-loopback.xml", 1);
+  const pid_t launcher = spawn({std::string(MECHSIM_BIN_DIR) + "/mechsim", "launch", MECHSIM_SOURCE_DIR "/config/scenes/nc_slide_loop.yaml",
+                                "--end", "60 s", "--no-plot", "--no-progress", "--runs-dir", (dir / "runs").string(), "--set",
+                                "dds.domain=" + std::to_string(domain.domain_id())},
+                               (dir / "launch.log").string());
+  {
+    auto intruder = transport::create_participant("cyclone", domain.domain_id());
+    auto status = intruder->create_status_reader();
+    std::uint64_t run_id = 0;
+    for (int i = 0; i < 3000 && run_id == 0; ++i) {
+      while (auto s = status->take())
+        if (s->state == transport::NodeState::running) run_id = s->header.run_id;
+      if (run_id == 0) intruder->wait(std::chrono::milliseconds(10));
+    }
+    ASSERT_NE(run_id, 0u) << slurp((dir / "launch.log").string());
+    auto control = intruder->create_control_writer();
+    transport::ControlMessage abort;
+    abort.run_id = run_id;
+    abort.command = transport::ControlCommand::abort;
+    control->write(abort);
+    const CommandResult r = wait_for(launcher, (dir / "launch.log").string(), 60);
+    EXPECT_EQ(r.exit_code, 1) << r.output;
+    EXPECT_NE(r.output.find("foreign data on topic 'mechsim/control'"), std::string::npos) << r.output;
+  }
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace mechsim::testing

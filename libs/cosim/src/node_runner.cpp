@@ -184,6 +184,16 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
         if (r->matched_writers() < 1) return false;
       return !node.cut || (cut_writer->matched_readers() >= 1 && cut_reader->matched_writers() >= 1);
     };
+    // mechsim/control has one writer, the launcher: a second one could stop or start the run.
+    auto check_control_writers = [&] {
+      if (control->matched_writers() <= 1) return;
+      std::string ids;
+      for (const auto& id : control->matched_writer_ids()) ids += (ids.empty() ? "" : "; ") + id;
+      throw std::runtime_error("foreign data on topic 'mechsim/control' (the scene's only writer is the launcher): " +
+                               std::to_string(control->matched_writers()) + " writers are matched" + (ids.empty() ? "" : " (" + ids + ")") +
+                               "; a participant that does not belong to this run writes into its domain " +
+                               std::to_string(options.domain) + " (docs/faults.md)");
+    };
     bool ready = false, started = false;
     transport::ControlMessage start_message;
     const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
@@ -196,6 +206,7 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
         beat.set_state(transport::NodeState::ready);
       }
       while (auto c = control->take()) {
+        check_control_writers();
         if (c->run_id != options.run_id) continue;  // a stale command of another run
         if (c->command == transport::ControlCommand::abort || c->command == transport::ControlCommand::stop) return 3;
         if (c->command == transport::ControlCommand::start) {
@@ -281,10 +292,12 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
       if (twin_cut_writer) twin_cut_writer->write({options.run_id, stepper.step(), stepper.time()}, prediction);
     };
     auto check_control = [&] {
-      while (auto c = control->take())
+      while (auto c = control->take()) {
+        check_control_writers();
         if (c->run_id == options.run_id &&
             (c->command == transport::ControlCommand::abort || c->command == transport::ControlCommand::stop))
           return true;
+      }
       return false;
     };
     std::vector<std::string> output_names;

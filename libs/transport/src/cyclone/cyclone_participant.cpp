@@ -224,6 +224,9 @@ class CycloneControlReader final : public ControlReader {
                           c.macro_step, static_cast<RunMode>(c.mode), c.rtf, c.start_wall_ns};
   }
 
+  int matched_writers() const override { return subscription_matched(reader_); }
+  std::vector<std::string> matched_writer_ids() const override { return describe_matched_writers(reader_); }
+
  private:
   dds_entity_t reader_;
 };

@@ -331,6 +331,8 @@ class FastControlReader final : public ControlReader, Endpoint {
     return m;
   }
 
+  int matched_writers() const override { return subscription_matched(reader_); }
+
  private:
   dds::DataReader* reader_;
   dds::ReadCondition* condition_;

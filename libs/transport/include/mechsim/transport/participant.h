@@ -56,6 +56,9 @@ class ControlReader {
  public:
   virtual ~ControlReader() = default;
   virtual std::optional<ControlMessage> take() = 0;
+  // Writers of mechsim/control matched with this reader (the launcher: one); -1 = unknown.
+  virtual int matched_writers() const { return -1; }
+  virtual std::vector<std::string> matched_writer_ids() const { return {}; }
 };
 
 class StatusWriter {
