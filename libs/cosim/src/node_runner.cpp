@@ -233,16 +233,17 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
     // and the redundant copy of a step carries the same values. Checked whenever samples
     // were taken, before they are used.
     std::vector<std::uint64_t> next_step(readers.size(), 0);
-    auto foreign = [&](const std::string& topic, const std::string& from, const std::string& what) {
+    // The message names the writers the reader is matched with: the intruder among them.
+    auto foreign = [&](const transport::SampleReader* r, const std::string& topic, const std::string& from, const std::string& what) {
+      std::string ids;
+      for (const auto& id : r->matched_writer_ids()) ids += (ids.empty() ? "" : "; ") + id;
       throw std::runtime_error("foreign data on topic '" + topic + "' (the scene's only writer is participant '" + from + "'): " + what +
+                               "; " + std::to_string(r->matched_writers()) + " writer(s) matched" + (ids.empty() ? "" : " (" + ids + ")") +
                                "; a participant that does not belong to this run writes into its domain " +
                                std::to_string(options.domain) + " (docs/faults.md)");
     };
     auto check_writers = [&](const transport::SampleReader* r, const std::string& topic, const std::string& from) {
-      if (r == nullptr || r->matched_writers() <= 1) return;
-      std::string ids;
-      for (const auto& id : r->matched_writer_ids()) ids += (ids.empty() ? "" : "; ") + id;
-      foreign(topic, from, std::to_string(r->matched_writers()) + " writers are matched" + (ids.empty() ? "" : " (" + ids + ")"));
+      if (r != nullptr && r->matched_writers() > 1) foreign(r, topic, from, "more than one writer");
     };
     auto drain = [&] {
       bool took = false;
@@ -253,16 +254,16 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
           took = true;
           if (h.run_id != options.run_id) continue;
           if (h.step != next_step[e])
-            foreign(edge.topic, edge.from, "step " + std::to_string(h.step) + " arrived where step " + std::to_string(next_step[e]) + " was due");
+            foreign(readers[e].get(), edge.topic, edge.from, "step " + std::to_string(h.step) + " arrived where step " + std::to_string(next_step[e]) + " was due");
           next_step[e] = h.step + 1;
           if (h.step + 2 >= stepper.step() && !stepper.channel(e).add(h.step, received))
-            foreign(edge.topic, edge.from, "two different samples for step " + std::to_string(h.step));
+            foreign(readers[e].get(), edge.topic, edge.from, "two different samples for step " + std::to_string(h.step));
         }
         // The twin copy: a step already there (or consumed) is dropped as a duplicate.
         while (e < twin_readers.size() && twin_readers[e] && twin_readers[e]->take(h, received)) {
           took = true;
           if (h.run_id == options.run_id && h.step >= stepper.step() && !stepper.channel(e).add(h.step, received))
-            foreign(transport::redundant_topic(edge.topic), edge.from, "two different samples for step " + std::to_string(h.step));
+            foreign(twin_readers[e].get(), transport::redundant_topic(edge.topic), edge.from, "two different samples for step " + std::to_string(h.step));
         }
       }
       transport::SampleHeader h;
