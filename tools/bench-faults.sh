@@ -9,25 +9,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 runs="${1:-3}"
 loss="${2:-0.05}"
-[ "$(id -u)" -eq 0 ] || { echo "bench-faults: needs root (network namespaces)" >&2; exit 77; }
-mechsim="$PWD/build/bin/mechsim"
-scene="$PWD/config/scenes/nc_slide_loop.yaml"
 export MECHSIM_NETNS_PREFIX=mshfaults
-work="$(mktemp -d /tmp/mechsim-bench-faults.XXXXXX)"
-agents=()
-cleanup() {
-  for pid in "${agents[@]}"; do kill "$pid" 2>/dev/null || true; done
-  wait 2>/dev/null || true
-  tools/netns-hosts.sh down
-  rm -rf "$work"
-}
-trap cleanup EXIT
-tools/netns-hosts.sh up 3
-for h in 2 3; do
-  tools/netns-hosts.sh exec "$h" "$mechsim" agent --domain 7 --address "10.77.0.$h" --peers 10.77.0.1 \
-    --work-dir "$work/agent$h" > "$work/agent$h.log" 2>&1 &
-  agents+=($!)
-done
+source tools/bench-bed.sh
 set_loss() {  # on | off
   for h in 1 2 3; do
     if [ "$1" = on ]; then
@@ -41,10 +24,9 @@ one_run() {  # layout redundant(true|false) -> steps/s
   local json="$work/run.json"
   rm -f "$json"
   tools/netns-hosts.sh exec 1 "$mechsim" launch "$scene" --dds "$1" --end '0.5 s' --no-plot --no-progress \
-    --runs-dir "$work/runs" --json "$json" --set dds.domain=7 --set "faults.redundant_samples=$2" \
-    --set hosts.a.address=10.77.0.1 --set hosts.b.address=10.77.0.2 --set hosts.c.address=10.77.0.3 \
-    --set participants.servo.host=a --set participants.tacho.host=b --set participants.slide.host=c > /dev/null 2>&1 || { echo 0; return; }
-  grep -o '"steps_per_second": *[0-9.e+]*' "$json" | head -1 | sed 's/.*: *//'
+    --runs-dir "$work/runs" --json "$json" --set "faults.redundant_samples=$2" "${three_host_args[@]}" > /dev/null 2>&1 ||
+    { echo 0; return; }
+  rate "$json"
 }
 median() { printf "%s\n" "$@" | sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
 printf "%-8s %-10s %12s %12s %7s\n" layout redundant lossless "loss $loss" ratio
