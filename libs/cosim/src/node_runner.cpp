@@ -245,6 +245,28 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
     auto check_writers = [&](const transport::SampleReader* r, const std::string& topic, const std::string& from) {
       if (r != nullptr && r->matched_writers() > 1) foreign(r, topic, from, "more than one writer");
     };
+    // Plausible samples (docs/dds.md): every field this node uses must be finite and within
+    // the physical bounds the topic table declares.
+    // Fields the publisher does not compute are NaN by design (PlannedNode::published_outputs).
+    std::vector<std::vector<int>> checked_fields(node.inputs.size());
+    for (std::size_t e = 0; e < node.inputs.size(); ++e) {
+      const PlannedNode& publisher = plan.node(node.inputs[e].from);
+      for (const auto& [field, input] : node.inputs[e].field_to_input)
+        if (field < static_cast<int>(publisher.published_outputs.size()) && publisher.published_outputs[static_cast<std::size_t>(field)] >= 0)
+          checked_fields[e].push_back(field);
+    }
+    auto check_plausible = [&](std::size_t e, const transport::SampleHeader& h, const std::vector<double>& v) {
+      const InboundEdge& edge = node.inputs[e];
+      for (const int field : checked_fields[e]) {
+        const transport::FieldInfo& f = edge.type->fields[static_cast<std::size_t>(field)];
+        const double x = v[static_cast<std::size_t>(field)];
+        if (std::isfinite(x) && x >= f.min && x <= f.max) continue;
+        char buf[160];
+        std::snprintf(buf, sizeof buf, "%s = %.6g%s%s outside [%g, %g]", f.name.c_str(), x, f.unit.empty() ? "" : " ", f.unit.c_str(), f.min, f.max);
+        throw std::runtime_error("implausible sample on topic '" + edge.topic + "' from participant '" + edge.from + "', step " +
+                                 std::to_string(h.step) + ": " + buf + " (bounds: docs/dds.md, 'Plausible samples')");
+      }
+    };
     auto drain = [&] {
       bool took = false;
       for (std::size_t e = 0; e < readers.size(); ++e) {
@@ -256,12 +278,14 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
           if (h.step != next_step[e])
             foreign(readers[e].get(), edge.topic, edge.from, "step " + std::to_string(h.step) + " arrived where step " + std::to_string(next_step[e]) + " was due");
           next_step[e] = h.step + 1;
+          check_plausible(e, h, received);
           if (h.step + 2 >= stepper.step() && !stepper.channel(e).add(h.step, received))
             foreign(readers[e].get(), edge.topic, edge.from, "two different samples for step " + std::to_string(h.step));
         }
         // The twin copy: a step already there (or consumed) is dropped as a duplicate.
         while (e < twin_readers.size() && twin_readers[e] && twin_readers[e]->take(h, received)) {
           took = true;
+          if (h.run_id == options.run_id && h.step >= stepper.step()) check_plausible(e, h, received);
           if (h.run_id == options.run_id && h.step >= stepper.step() && !stepper.channel(e).add(h.step, received))
             foreign(twin_readers[e].get(), transport::redundant_topic(edge.topic), edge.from, "two different samples for step " + std::to_string(h.step));
         }

@@ -10,11 +10,14 @@ int TopicType::field_index(std::string_view name) const {
 
 namespace {
 FieldInfo f64(const char* name) { return {name, FieldKind::f64}; }
+// A field with physical bounds: far beyond what any mechanism mechsim models can produce
+// (an amplifier of 1 kV, a motor at 10 000 rad/s), never a design limit of one scene.
+FieldInfo bounded(const char* name, double min, double max, const char* unit) { return {name, FieldKind::f64, min, max, unit}; }
 FieldInfo flag(const char* name) { return {name, FieldKind::boolean}; }
 
 // Mirrors idl/cam.idl.
 const TopicType kCamState{"mechsim::msg::CamState", "cam.idl",
-                          {f64("angle"), f64("speed"), f64("acceleration"), f64("lift"), f64("lift_d1"),
+                          {f64("angle"), bounded("speed", -1e4, 1e4, "rad/s"), f64("acceleration"), f64("lift"), f64("lift_d1"),
                            f64("lift_d2"), f64("pressure_angle"), f64("shaft_torque"), f64("drive_power"),
                            f64("drive_load_torque"), f64("drive_load_inertia")}};
 // Mirrors idl/follower.idl.
@@ -25,11 +28,12 @@ const TopicType kFollowerState{"mechsim::msg::FollowerState", "follower.idl",
                                 f64("spring_force"), f64("load_force"), f64("inertia_force")}};
 // Mirrors idl/servo.idl.
 const TopicType kServoCommand{"mechsim::msg::ServoCommand", "servo.idl",
-                              {f64("armature_voltage"), f64("position_reference"), f64("following_error"),
+                              {bounded("armature_voltage", -1e3, 1e3, "V"), f64("position_reference"), f64("following_error"),
                                f64("velocity_error"), flag("saturated")}};
 // Mirrors idl/tacho.idl.
 const TopicType kTachoState{"mechsim::msg::TachoState", "tacho.idl",
-                            {f64("tacho_voltage"), f64("motor_angle"), f64("motor_speed"), f64("armature_current"),
+                            {f64("tacho_voltage"), f64("motor_angle"), bounded("motor_speed", -1e4, 1e4, "rad/s"),
+                             bounded("armature_current", -1e4, 1e4, "A"),
                              f64("coupling_torque")}};
 // Mirrors idl/slide.idl.
 const TopicType kSlideState{"mechsim::msg::SlideState", "slide.idl",
@@ -37,7 +41,7 @@ const TopicType kSlideState{"mechsim::msg::SlideState", "slide.idl",
                              f64("coupling_torque")}};
 // Mirrors idl/cvt.idl.
 const TopicType kCvtState{"mechsim::msg::CvtState", "cvt.idl",
-                          {f64("input_speed"), f64("output_speed"), f64("output_acceleration"), f64("ratio"), f64("ratio_setting"), f64("ratio_command"), f64("motor_torque"), f64("belt_torque"), f64("input_torque"), f64("output_torque"), f64("eta_PB"), f64("eta_SYS"), f64("clamping_force"), f64("slip_margin"), f64("sigma_1"), f64("sigma_2"), f64("sigma_3"), f64("sigma_4"), f64("belt_loss"), f64("bearing_loss"), f64("flags"),
+                          {f64("input_speed"), f64("output_speed"), f64("output_acceleration"), f64("ratio"), f64("ratio_setting"), f64("ratio_command"), f64("motor_torque"), f64("belt_torque"), f64("input_torque"), f64("output_torque"), f64("eta_PB"), f64("eta_SYS"), bounded("clamping_force", 0.0, 1e7, "N"), f64("slip_margin"), f64("sigma_1"), f64("sigma_2"), f64("sigma_3"), f64("sigma_4"), f64("belt_loss"), f64("bearing_loss"), f64("flags"),
                            flag("gross_slip"), flag("torque_reversal"), flag("outside_model")}};
 // Mirrors idl/coupling.idl (up to 16 torque levels per macro step).
 TopicType coupling_prediction_type() {

@@ -2,7 +2,10 @@
 // same names, same order, same kinds. Parsed from the IDL text here so they cannot drift.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
+#include <iomanip>
+#include <set>
 #include <regex>
 #include <sstream>
 
@@ -74,4 +77,34 @@ TEST(TopicTypes, LookupByShortAndScopedName) {
 }
 
 }  // namespace
+
+// docs/dds.md, 'Plausible samples', lists exactly the bounded fields of the topic table.
+TEST(TopicTypes, PlausibleBoundsAreDocumented) {
+  std::ifstream in(std::string(MECHSIM_SOURCE_DIR) + "/docs/dds.md");
+  std::set<std::string> documented, declared;
+  bool in_section = false;
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("## ", 0) == 0) in_section = line == "## Plausible samples";
+    if (!in_section || line.rfind("| `", 0) != 0) continue;
+    std::istringstream row(line);
+    std::string cell;
+    std::vector<std::string> cells;
+    while (std::getline(row, cell, '|')) {
+      const auto a = cell.find_first_not_of(" `"), b = cell.find_last_not_of(" `");
+      if (a != std::string::npos) cells.push_back(cell.substr(a, b - a + 1));
+    }
+    ASSERT_EQ(cells.size(), 4u) << line;
+    documented.insert(cells[0] + " " + cells[1] + " " + cells[2] + " " + cells[3]);
+  }
+  for (const TopicType* t : all_topic_types())
+    for (const FieldInfo& f : t->fields)
+      if (std::isfinite(f.min) || std::isfinite(f.max)) {
+        std::ostringstream e;
+        e << t->idl_name.substr(t->idl_name.rfind(':') + 1) << "." << f.name << " " << std::fixed << std::setprecision(0) << f.min << " "
+          << f.max << " " << f.unit;
+        declared.insert(e.str());
+      }
+  EXPECT_EQ(documented, declared);
+}
+
 }  // namespace mechsim::transport

@@ -4,6 +4,7 @@
 // files so the two cannot drift apart.
 #pragma once
 
+#include <limits>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -15,6 +16,12 @@ enum class FieldKind { f64, boolean };
 struct FieldInfo {
   std::string name;
   FieldKind kind;
+  // Physical bounds (SI): a received value outside them, or not finite, is refused by the
+  // node that uses the field (docs/dds.md, 'Plausible samples'; the table there is checked
+  // against these by tests/unit/transport). Unbounded where nothing physical limits it.
+  double min = -std::numeric_limits<double>::infinity();
+  double max = std::numeric_limits<double>::infinity();
+  std::string unit{};  // for messages and the docs
 };
 
 struct TopicType {
