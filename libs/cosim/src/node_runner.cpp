@@ -184,16 +184,6 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
         if (r->matched_writers() < 1) return false;
       return !node.cut || (cut_writer->matched_readers() >= 1 && cut_reader->matched_writers() >= 1);
     };
-    // mechsim/control has one writer, the launcher: a second one could stop or start the run.
-    auto check_control_writers = [&] {
-      if (control->matched_writers() <= 1) return;
-      std::string ids;
-      for (const auto& id : control->matched_writer_ids()) ids += (ids.empty() ? "" : "; ") + id;
-      throw std::runtime_error("foreign data on topic 'mechsim/control' (the scene's only writer is the launcher): " +
-                               std::to_string(control->matched_writers()) + " writers are matched" + (ids.empty() ? "" : " (" + ids + ")") +
-                               "; a participant that does not belong to this run writes into its domain " +
-                               std::to_string(options.domain) + " (docs/faults.md)");
-    };
     bool ready = false, started = false;
     transport::ControlMessage start_message;
     const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
@@ -206,7 +196,6 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
         beat.set_state(transport::NodeState::ready);
       }
       while (auto c = control->take()) {
-        check_control_writers();
         if (c->run_id != options.run_id) continue;  // a stale command of another run
         if (c->command == transport::ControlCommand::abort || c->command == transport::ControlCommand::stop) return 3;
         if (c->command == transport::ControlCommand::start) {
@@ -242,11 +231,44 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
                                "; a participant that does not belong to this run writes into its domain " +
                                std::to_string(options.domain) + " (docs/faults.md)");
     };
-    auto check_writers = [&](const transport::SampleReader* r, const std::string& topic, const std::string& from) {
-      if (r != nullptr && r->matched_writers() > 1) foreign(r, topic, from, "more than one writer");
+    // A second writer: hold (use no sample) while it lasts; a writer of a process that died
+    // lingers until its DDS lease runs out (2 s; a domain is reused by later runs), so only a
+    // second writer that stays longer than kForeignWriterGrace is foreign.
+    constexpr double kForeignWriterGrace = 4.0;  // s, above the 2 s lease of config/dds/
+    std::optional<Clock::time_point> second_writer_since;
+    auto count_writers = [&]() -> const transport::SampleReader* {
+      auto extra = [](const transport::SampleReader* r) { return r != nullptr && r->matched_writers() > 1; };
+      for (std::size_t e = 0; e < readers.size(); ++e) {
+        if (extra(readers[e].get())) return readers[e].get();
+        if (e < twin_readers.size() && extra(twin_readers[e].get())) return twin_readers[e].get();
+      }
+      if (extra(cut_reader.get())) return cut_reader.get();
+      if (extra(twin_cut_reader.get())) return twin_cut_reader.get();
+      return nullptr;
     };
-    // Plausible samples (docs/dds.md): every field this node uses must be finite and within
-    // the physical bounds the topic table declares.
+    auto topic_of = [&](const transport::SampleReader* r, std::string& topic, std::string& from) {
+      for (std::size_t e = 0; e < readers.size(); ++e) {
+        if (r == readers[e].get()) topic = node.inputs[e].topic, from = node.inputs[e].from;
+        if (e < twin_readers.size() && r == twin_readers[e].get()) topic = transport::redundant_topic(node.inputs[e].topic), from = node.inputs[e].from;
+      }
+      if (node.cut && r == cut_reader.get()) topic = node.cut->partner_topic, from = node.cut->partner;
+      if (node.cut && r == twin_cut_reader.get()) topic = transport::redundant_topic(node.cut->partner_topic), from = node.cut->partner;
+    };
+    // True while the node must hold; throws once a second writer outstayed the grace.
+    auto hold_for_second_writer = [&] {
+      const transport::SampleReader* r = count_writers();
+      if (r == nullptr) {
+        second_writer_since.reset();
+        return false;
+      }
+      if (!second_writer_since) second_writer_since = Clock::now();
+      if (std::chrono::duration<double>(Clock::now() - *second_writer_since).count() > kForeignWriterGrace) {
+        std::string topic, from;
+        topic_of(r, topic, from);
+        foreign(r, topic, from, "more than one writer for " + std::to_string(static_cast<int>(kForeignWriterGrace)) + " s");
+      }
+      return true;
+    };
     // Fields the publisher does not compute are NaN by design (PlannedNode::published_outputs).
     std::vector<std::vector<int>> checked_fields(node.inputs.size());
     for (std::size_t e = 0; e < node.inputs.size(); ++e) {
@@ -263,8 +285,14 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
         if (std::isfinite(x) && x >= f.min && x <= f.max) continue;
         char buf[160];
         std::snprintf(buf, sizeof buf, "%s = %.6g%s%s outside [%g, %g]", f.name.c_str(), x, f.unit.empty() ? "" : " ", f.unit.c_str(), f.min, f.max);
+        // With a second writer matched the sample is most likely not the partner's at all.
+        if (readers[e]->matched_writers() > 1)
+          foreign(readers[e].get(), edge.topic, edge.from, std::string("an implausible sample for step ") + std::to_string(h.step) + " (" + buf + ")");
+        // From the partner itself: it diverged (its own guard had not caught it yet) or its
+        // data is corrupted; "diverged" makes the launcher look for a stable macro step.
         throw std::runtime_error("implausible sample on topic '" + edge.topic + "' from participant '" + edge.from + "', step " +
-                                 std::to_string(h.step) + ": " + buf + " (bounds: docs/dds.md, 'Plausible samples')");
+                                 std::to_string(h.step) + ": " + buf + " (bounds: docs/dds.md, 'Plausible samples'): participant '" +
+                                 edge.from + "' diverged, or its data is corrupted");
       }
     };
     auto drain = [&] {
@@ -299,15 +327,7 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
         took = true;
         if (h.run_id == options.run_id) stepper.add_partner_prediction(h.step, received);
       }
-      if (!took) return;
-      for (std::size_t e = 0; e < readers.size(); ++e) {
-        check_writers(readers[e].get(), node.inputs[e].topic, node.inputs[e].from);
-        if (e < twin_readers.size()) check_writers(twin_readers[e].get(), transport::redundant_topic(node.inputs[e].topic), node.inputs[e].from);
-      }
-      if (node.cut) {
-        check_writers(cut_reader.get(), node.cut->partner_topic, node.cut->partner);
-        check_writers(twin_cut_reader.get(), transport::redundant_topic(node.cut->partner_topic), node.cut->partner);
-      }
+      if (took) hold_for_second_writer();
     };
     std::vector<double> prediction;
     auto predict_if_due = [&] {
@@ -318,7 +338,6 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
     };
     auto check_control = [&] {
       while (auto c = control->take()) {
-        check_control_writers();
         if (c->run_id == options.run_id &&
             (c->command == transport::ControlCommand::abort || c->command == transport::ControlCommand::stop))
           return true;
@@ -414,13 +433,14 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
     };
     for (;;) {
       drain();
-      if (!initialised && stepper.can_initialise()) {
+      const bool hold = second_writer_since.has_value() && hold_for_second_writer();
+      if (!hold && !initialised && stepper.can_initialise()) {
         stepper.initialise(values);
         publish();
         initialised = true;
       }
       predict_if_due();
-      while (initialised && stepper.can_step()) {
+      while (!hold && initialised && stepper.can_step() && !second_writer_since) {
         stepper.step(values);
         publish();
         stepper.take_events();  // the block's own event log below says what they meant
@@ -433,6 +453,7 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
       }
       if (stepper.finished()) break;
       if (stop_requested() || check_control()) return 3;
+      if (second_writer_since) waiting_since = Clock::now();  // a hold is not a partition
       check_partition();
       copy_stats(stepper.solver_stats(), beat.status());
       if (pacer && beat.until_next().count() == 0) {  // the figures walk the histogram: heartbeat pace only
