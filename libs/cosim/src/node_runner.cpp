@@ -1,5 +1,6 @@
 #include "mechsim/cosim/node_runner.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -236,37 +237,28 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
     // second writer that stays longer than kForeignWriterGrace is foreign.
     constexpr double kForeignWriterGrace = 4.0;  // s, above the 2 s lease of config/dds/
     std::optional<Clock::time_point> second_writer_since;
-    auto count_writers = [&]() -> const transport::SampleReader* {
-      auto extra = [](const transport::SampleReader* r) { return r != nullptr && r->matched_writers() > 1; };
-      for (std::size_t e = 0; e < readers.size(); ++e) {
-        if (extra(readers[e].get())) return readers[e].get();
-        if (e < twin_readers.size() && extra(twin_readers[e].get())) return twin_readers[e].get();
-      }
-      if (extra(cut_reader.get())) return cut_reader.get();
-      if (extra(twin_cut_reader.get())) return twin_cut_reader.get();
-      return nullptr;
+    // Every reader of a partner's samples, with the topic and the participant it expects.
+    struct WatchedReader {
+      const transport::SampleReader* reader;
+      std::string topic, from;
     };
-    auto topic_of = [&](const transport::SampleReader* r, std::string& topic, std::string& from) {
-      for (std::size_t e = 0; e < readers.size(); ++e) {
-        if (r == readers[e].get()) topic = node.inputs[e].topic, from = node.inputs[e].from;
-        if (e < twin_readers.size() && r == twin_readers[e].get()) topic = transport::redundant_topic(node.inputs[e].topic), from = node.inputs[e].from;
-      }
-      if (node.cut && r == cut_reader.get()) topic = node.cut->partner_topic, from = node.cut->partner;
-      if (node.cut && r == twin_cut_reader.get()) topic = transport::redundant_topic(node.cut->partner_topic), from = node.cut->partner;
-    };
+    std::vector<WatchedReader> watched;
+    for (std::size_t e = 0; e < readers.size(); ++e) {
+      watched.push_back({readers[e].get(), node.inputs[e].topic, node.inputs[e].from});
+      if (e < twin_readers.size() && twin_readers[e]) watched.push_back({twin_readers[e].get(), transport::redundant_topic(node.inputs[e].topic), node.inputs[e].from});
+    }
+    if (cut_reader) watched.push_back({cut_reader.get(), node.cut->partner_topic, node.cut->partner});
+    if (twin_cut_reader) watched.push_back({twin_cut_reader.get(), transport::redundant_topic(node.cut->partner_topic), node.cut->partner});
     // True while the node must hold; throws once a second writer outstayed the grace.
     auto hold_for_second_writer = [&] {
-      const transport::SampleReader* r = count_writers();
-      if (r == nullptr) {
+      const auto w = std::find_if(watched.begin(), watched.end(), [](const WatchedReader& r) { return r.reader->matched_writers() > 1; });
+      if (w == watched.end()) {
         second_writer_since.reset();
         return false;
       }
       if (!second_writer_since) second_writer_since = Clock::now();
-      if (std::chrono::duration<double>(Clock::now() - *second_writer_since).count() > kForeignWriterGrace) {
-        std::string topic, from;
-        topic_of(r, topic, from);
-        foreign(r, topic, from, "more than one writer for " + std::to_string(static_cast<int>(kForeignWriterGrace)) + " s");
-      }
+      if (std::chrono::duration<double>(Clock::now() - *second_writer_since).count() > kForeignWriterGrace)
+        foreign(w->reader, w->topic, w->from, "more than one writer for " + std::to_string(static_cast<int>(kForeignWriterGrace)) + " s");
       return true;
     };
     // Fields the publisher does not compute are NaN by design (PlannedNode::published_outputs).
@@ -313,8 +305,9 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
         // The twin copy: a step already there (or consumed) is dropped as a duplicate.
         while (e < twin_readers.size() && twin_readers[e] && twin_readers[e]->take(h, received)) {
           took = true;
-          if (h.run_id == options.run_id && h.step >= stepper.step()) check_plausible(e, h, received);
-          if (h.run_id == options.run_id && h.step >= stepper.step() && !stepper.channel(e).add(h.step, received))
+          if (h.run_id != options.run_id || h.step < stepper.step()) continue;
+          check_plausible(e, h, received);
+          if (!stepper.channel(e).add(h.step, received))
             foreign(twin_readers[e].get(), transport::redundant_topic(edge.topic), edge.from, "two different samples for step " + std::to_string(h.step));
         }
       }
@@ -337,11 +330,10 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
       if (twin_cut_writer) twin_cut_writer->write({options.run_id, stepper.step(), stepper.time()}, prediction);
     };
     auto check_control = [&] {
-      while (auto c = control->take()) {
+      while (auto c = control->take())
         if (c->run_id == options.run_id &&
             (c->command == transport::ControlCommand::abort || c->command == transport::ControlCommand::stop))
           return true;
-      }
       return false;
     };
     std::vector<std::string> output_names;
@@ -440,7 +432,7 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
         initialised = true;
       }
       predict_if_due();
-      while (!hold && initialised && stepper.can_step() && !second_writer_since) {
+      while (initialised && stepper.can_step() && !second_writer_since) {  // a drain below may start a hold
         stepper.step(values);
         publish();
         stepper.take_events();  // the block's own event log below says what they meant
