@@ -155,7 +155,7 @@ void Agent::start_node(const transport::AgentMessage& m) {
   }
   try {
     run.folder = fs::path(opt_.work_dir) / folder_name;
-    fs::create_directories(run.folder / "dds");
+    fs::create_directories(run.folder);
     write_file(run.folder / "scene.yaml", request.value("scene_yaml", ""));
     transport::UnicastNetwork network{request.value("address", ""), request.value("peers", std::vector<std::string>{}),
                                       request.value("lease_s", 5.0)};
@@ -163,10 +163,7 @@ void Agent::start_node(const transport::AgentMessage& m) {
     run.heartbeat_timeout_s = std::max(opt_.heartbeat_timeout_s, request.value("partition_grace_s", 0.0) + 1.0);
     if (network.address.empty() || addresses_.count(network.address) == 0)
       return refuse("the request names address '" + network.address + "', which is not one of this host's");
-    write_file(run.folder / "dds/cyclonedds.xml", transport::cyclone_unicast_config(network));
-    write_file(run.folder / "dds/fastdds.xml", transport::fastdds_unicast_profile(network));
-    const std::vector<std::string> env{"CYCLONEDDS_URI=file://" + (run.folder / "dds/cyclonedds.xml").string(),
-                                       "FASTRTPS_DEFAULT_PROFILES_FILE=" + (run.folder / "dds/fastdds.xml").string()};
+    const std::vector<std::string> env = launch::write_unicast_dds_files((run.folder / "dds").string(), network);
     const std::vector<std::string> args{"--scene", (run.folder / "scene.yaml").string(), "--node", m.node,
                                         "--run-id", std::to_string(m.run_id), "--domain", std::to_string(opt_.domain),
                                         "--run-dir", run.folder.string()};
@@ -298,12 +295,7 @@ int Agent::run() {
     addresses_.insert(opt_.address);
     transport::UnicastNetwork network{opt_.address, opt_.peers};
     network.peers.push_back(opt_.address);
-    const fs::path dds = fs::path(opt_.work_dir) / "dds";
-    fs::create_directories(dds);
-    write_file(dds / "agent-cyclonedds.xml", transport::cyclone_unicast_config(network));
-    write_file(dds / "agent-fastdds.xml", transport::fastdds_unicast_profile(network));
-    ::setenv("CYCLONEDDS_URI", ("file://" + (dds / "agent-cyclonedds.xml").string()).c_str(), 1);
-    ::setenv("FASTRTPS_DEFAULT_PROFILES_FILE", (dds / "agent-fastdds.xml").string().c_str(), 1);
+    launch::set_environment(launch::write_unicast_dds_files((fs::path(opt_.work_dir) / "dds").string(), network));
   } else {
     addresses_.insert("127.0.0.1");
     launch::configure_dds_environment();

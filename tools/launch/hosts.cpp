@@ -7,6 +7,9 @@
 #include <netinet/in.h>
 
 #include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <stdexcept>
 
 #include "mechsim/config/config_node.h"
@@ -45,6 +48,27 @@ std::string join(const std::vector<std::string>& items, const std::string& separ
   std::string out;
   for (const auto& i : items) out += (out.empty() ? "" : separator) + i;
   return out;
+}
+
+std::vector<std::string> write_unicast_dds_files(const std::string& dir, const transport::UnicastNetwork& network) {
+  namespace fs = std::filesystem;
+  const fs::path folder = fs::absolute(dir);
+  fs::create_directories(folder);
+  auto write = [](const fs::path& path, const std::string& text) {
+    std::ofstream out(path, std::ios::binary);
+    out << text;
+    if (!out) throw std::runtime_error(path.string() + ": cannot write the DDS configuration");
+    return path.string();
+  };
+  return {"CYCLONEDDS_URI=file://" + write(folder / "cyclonedds.xml", transport::cyclone_unicast_config(network)),
+          "FASTRTPS_DEFAULT_PROFILES_FILE=" + write(folder / "fastdds.xml", transport::fastdds_unicast_profile(network))};
+}
+
+void set_environment(const std::vector<std::string>& entries) {
+  for (const std::string& e : entries) {
+    const auto eq = e.find('=');
+    ::setenv(e.substr(0, eq).c_str(), e.substr(eq + 1).c_str(), 1);
+  }
 }
 
 HostLayout plan_hosts(const config::Scene& scene) {

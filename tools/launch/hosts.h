@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "mechsim/config/scene.h"
+#include "mechsim/transport/network_config.h"
 
 namespace mechsim::launch {
 
@@ -26,6 +27,15 @@ struct HostLayout {
   std::vector<std::string> peers;              // addresses of the launcher's host and every host in use
   std::map<std::string, std::string> remote;   // participant -> address of its host's agent (absent: local)
 };
+
+// Writes <dir>/cyclonedds.xml and <dir>/fastdds.xml for `network` (the folder is created)
+// and returns the environment entries that point both vendors at them, absolute paths:
+// {"CYCLONEDDS_URI=file://...", "FASTRTPS_DEFAULT_PROFILES_FILE=..."}. For the launcher's own
+// process, an agent's own process and the nodes an agent starts. Throws std::runtime_error
+// naming a file it cannot write.
+std::vector<std::string> write_unicast_dds_files(const std::string& dir, const transport::UnicastNetwork& network);
+// Sets "NAME=value" entries in this process's environment (before any DDS participant exists).
+void set_environment(const std::vector<std::string>& entries);
 
 // Throws config::ConfigError (file, key, what was expected) for a host that does not
 // resolve, or when participants sit on other hosts and this machine is none of the hosts.

@@ -541,12 +541,7 @@ int Run::execute() {
   if (hosts_.multi_host) {
     // The hosts' interfaces and unicast peers for both vendors, generated from the scene,
     // for the launcher, its recorder and the local nodes (the agents write their own).
-    const transport::UnicastNetwork network{hosts_.launcher_address, hosts_.peers, lease_for(scene_)};
-    fs::create_directories(run_dir_ + "/dds");
-    std::ofstream(run_dir_ + "/dds/cyclonedds.xml") << transport::cyclone_unicast_config(network);
-    std::ofstream(run_dir_ + "/dds/fastdds.xml") << transport::fastdds_unicast_profile(network);
-    ::setenv("CYCLONEDDS_URI", ("file://" + fs::absolute(run_dir_ + "/dds/cyclonedds.xml").string()).c_str(), 1);
-    ::setenv("FASTRTPS_DEFAULT_PROFILES_FILE", fs::absolute(run_dir_ + "/dds/fastdds.xml").string().c_str(), 1);
+    set_environment(write_unicast_dds_files(run_dir_ + "/dds", {hosts_.launcher_address, hosts_.peers, lease_for(scene_)}));
   } else {
     configure_dds_environment();
   }
