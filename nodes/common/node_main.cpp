@@ -39,6 +39,9 @@ int node_main(const char* node_type, int argc, char** argv) {
   app.add_option("--run-id", run_id, "run id the samples carry")->required();
   app.add_option("--domain", domain, "DDS domain id")->required()->check(CLI::Range(0, 232));
   app.add_option("--run-dir", run_dir, "folder for this node's output log (omit: none)");
+  std::string control_writer;
+  app.add_option("--control-writer", control_writer,
+                 "GUID of the launcher's mechsim/control writer: a command of this run from any other writer fails the run");
   std::string replay;
   app.add_option("--replay", replay,
                  "publish the values of this table (written by `mechsim launch --replay`) instead of computing them");
@@ -77,6 +80,7 @@ int node_main(const char* node_type, int argc, char** argv) {
     options.run_dir = run_dir;
     options.run_id = run_id;
     options.domain = domain;
+    options.control_writer = control_writer;
     options.stop_requested = &g_stop;
     return cosim::run_node(plan, node_name, *participant, options);
   } catch (const config::ConfigError& e) {

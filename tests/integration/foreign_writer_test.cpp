@@ -28,11 +28,13 @@ struct RunningScene {
   launch::DomainLock domain = launch::DomainLock::acquire();
   fs::path dir;
   pid_t launcher = -1;
-  explicit RunningScene(const std::string& tag) : dir(fs::temp_directory_path() / ("mechsim-" + tag + "-" + std::to_string(::getpid()))) {
+  explicit RunningScene(const std::string& tag, const std::string& vendor = "cyclone")
+      : dir(fs::temp_directory_path() / ("mechsim-" + tag + "-" + std::to_string(::getpid()))) {
     fs::create_directories(dir);
     ::setenv("CYCLONEDDS_URI", "file://" MECHSIM_SOURCE_DIR "/config/dds/cyclonedds-loopback.xml", 1);
+    ::setenv("FASTRTPS_DEFAULT_PROFILES_FILE", MECHSIM_SOURCE_DIR "/config/dds/fastdds-shm.xml", 1);
     launcher = spawn({std::string(MECHSIM_BIN_DIR) + "/mechsim", "launch", MECHSIM_SOURCE_DIR "/config/scenes/nc_slide_loop.yaml", "--end",
-                      "60 s", "--no-plot", "--no-progress", "--runs-dir", (dir / "runs").string(), "--set",
+                      "60 s", "--no-plot", "--no-progress", "--runs-dir", (dir / "runs").string(), "--dds", vendor, "--set",
                       "dds.domain=" + std::to_string(domain.domain_id())},
                      log());
   }
@@ -48,9 +50,27 @@ struct RunningScene {
   }
 };
 
-bool has_cyclone() {
+bool has_vendor(const std::string& vendor) {
   const auto vendors = transport::available_vendors();
-  return std::find(vendors.begin(), vendors.end(), "cyclone") != vendors.end();
+  return std::find(vendors.begin(), vendors.end(), vendor) != vendors.end();
+}
+bool has_cyclone() { return has_vendor("cyclone"); }
+
+// The first sample of `topic` a participant of `vendor` sees on the scene's domain: what an
+// outsider reads the run id from.
+transport::SampleHeader first_sample(transport::Participant& intruder, const std::string& topic, const std::string& type_name,
+                                     const RunningScene& scene) {
+  const transport::TopicType* type = transport::find_topic_type(type_name);
+  EXPECT_NE(type, nullptr);
+  auto reader = intruder.create_reader(topic, *type);
+  transport::SampleHeader h;
+  std::vector<double> values;
+  for (int i = 0; i < 3000; ++i) {
+    if (reader->take(h, values)) return h;
+    intruder.wait(std::chrono::milliseconds(10));
+  }
+  ADD_FAILURE() << "no " << topic << " sample within 30 s:\n" << slurp(scene.log());
+  return h;
 }
 
 TEST(ForeignWriter, ForgedServoCommandsFailTheRunNamingTheTopicAndTheWriter) {
@@ -85,6 +105,35 @@ TEST(ForeignWriter, ForgedServoCommandsFailTheRunNamingTheTopicAndTheWriter) {
   }
 }
 
+// A forged command on mechsim/control with the run id read off the wire: "stop" would end
+// the run early as if finished. Every node takes commands only from the launcher's writer
+// (its GUID is on the node's command line), so the run fails naming the intruder's writer.
+class ForeignControl : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ForeignControl, AForgedStopCommandFailsTheRunNamingTheWriter) {
+  const std::string vendor = GetParam();
+  if (!has_vendor(vendor)) GTEST_SKIP() << "needs " << vendor;
+  RunningScene scene("foreign-control-" + vendor, vendor);
+  {
+    auto intruder = transport::create_participant(vendor, scene.domain.domain_id());
+    const transport::SampleHeader h = first_sample(*intruder, "servo/command", "ServoCommand", scene);
+    auto control = intruder->create_control_writer();
+    for (int i = 0; i < 200 && control->matched_readers() < 3; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    transport::ControlMessage stop;
+    stop.run_id = h.run_id;
+    stop.command = transport::ControlCommand::stop;
+    control->write(stop);
+    const CommandResult r = scene.wait();
+    EXPECT_EQ(r.exit_code, 1) << r.output;
+    EXPECT_NE(r.output.find("foreign data on topic 'mechsim/control'"), std::string::npos) << r.output;
+    ASSERT_FALSE(control->guid().empty());
+    EXPECT_NE(r.output.find("from writer " + control->guid()), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("steps/s"), std::string::npos) << "a corrupted run must not report success:\n" << r.output;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Vendors, ForeignControl, ::testing::Values("cyclone", "fastdds"),
+                         [](const auto& info) { return info.param; });
 
 }  // namespace
 }  // namespace mechsim::testing

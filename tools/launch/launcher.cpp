@@ -227,7 +227,7 @@ RunOutcome Run::run_nodes() {
       const json request{{"type", node.type->name}, {"scene_yaml", scene_text},
                          {"run_folder", fs::path(run_dir_).filename().string()}, {"domain", domain_},
                          {"address", remote->second}, {"peers", hosts_.peers}, {"lease_s", lease_for(scene_)},
-                         {"partition_grace_s", scene_.faults.partition_grace}};
+                         {"partition_grace_s", scene_.faults.partition_grace}, {"control_writer", control_->guid()}};
       processes_.start_remote(node.name(), remote->second, request.dump(), *agents_);
       watch_[node.name()] = {};
       continue;
@@ -235,6 +235,11 @@ RunOutcome Run::run_nodes() {
     const std::string exe = node_executable(node.type->name);
     std::vector<std::string> args{"--scene", run_dir_ + "/scene.yaml", "--node", node.name(), "--run-id", std::to_string(run_id_),
                                   "--domain", std::to_string(domain_), "--run-dir", run_dir_};
+    // The node takes commands from this launcher's control writer only (docs/faults.md).
+    if (const std::string guid = control_->guid(); !guid.empty()) {
+      args.push_back("--control-writer");
+      args.push_back(guid);
+    }
     if (auto it = replay_tables_.find(node.name()); it != replay_tables_.end()) {
       args.push_back("--replay");
       args.push_back(it->second);
@@ -312,7 +317,7 @@ RunOutcome Run::run_nodes() {
   // 2. Start, then watch until every node is done.
   const bool realtime = scene_.mode == "realtime";
   transport::ControlMessage start{run_id_, transport::ControlCommand::start, scene_.time.end, scene_.time.step,
-                                  realtime ? transport::RunMode::realtime : transport::RunMode::lockstep, scene_.rtf};
+                                  realtime ? transport::RunMode::realtime : transport::RunMode::lockstep, scene_.rtf, 0, {}};
   // Real-time pacing counts from the start command: step 0 is due a moment after it is
   // sent, so that every node has it by then.
   if (realtime) start.start_wall_ns = cosim::Pacer::now_ns() + 50'000'000;

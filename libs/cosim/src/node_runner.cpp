@@ -137,6 +137,23 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
   try {
     beat.set_state(transport::NodeState::starting);
     auto control = participant.create_control_reader();
+    // mechsim/control has one writer, the launcher, whose GUID the node got on its command
+    // line. A command of another run (a reused domain's stale sample) is ignored; a command
+    // of this run from any other writer is an intruder's: start, stop or abort alike.
+    auto command_for_this_run = [&](const transport::ControlMessage& c) {
+      if (c.run_id != options.run_id) return false;
+      if (!options.control_writer.empty() && c.writer != options.control_writer) {
+        std::string ids;
+        for (const auto& id : control->matched_writer_ids()) ids += (ids.empty() ? "" : "; ") + id;
+        throw std::runtime_error("foreign data on topic 'mechsim/control' (the scene's only writer is the launcher, GUID " +
+                                 options.control_writer + "): command " + std::to_string(static_cast<int>(c.command)) +
+                                 " for this run from writer " + (c.writer.empty() ? std::string("(unknown)") : c.writer) +
+                                 (ids.empty() ? "" : "; matched writers: " + ids) +
+                                 "; a participant that does not belong to this run writes into its domain " +
+                                 std::to_string(options.domain) + " (docs/faults.md)");
+      }
+      return true;
+    };
     auto writer = participant.create_writer(node.topic, *node.type->publishes);
     std::vector<std::unique_ptr<transport::SampleReader>> readers;
     for (const auto& edge : node.inputs) readers.push_back(participant.create_reader(edge.topic, *edge.type));
@@ -197,7 +214,7 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
         beat.set_state(transport::NodeState::ready);
       }
       while (auto c = control->take()) {
-        if (c->run_id != options.run_id) continue;  // a stale command of another run
+        if (!command_for_this_run(*c)) continue;
         if (c->command == transport::ControlCommand::abort || c->command == transport::ControlCommand::stop) return 3;
         if (c->command == transport::ControlCommand::start) {
           started = ready;
@@ -331,7 +348,7 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
     };
     auto check_control = [&] {
       while (auto c = control->take())
-        if (c->run_id == options.run_id &&
+        if (command_for_this_run(*c) &&
             (c->command == transport::ControlCommand::abort || c->command == transport::ControlCommand::stop))
           return true;
       return false;

@@ -1,10 +1,22 @@
 #include "mechsim/transport/messages.h"
 
+#include <cstdio>
 #include <stdexcept>
 
 #include "mechsim/transport/participant.h"
 
 namespace mechsim::transport {
+
+std::string guid_text(const unsigned char (&guid)[16]) {
+  std::string out;
+  char b[3];
+  for (std::size_t i = 0; i < 16; ++i) {
+    std::snprintf(b, sizeof b, "%02x", guid[i]);
+    out += b;
+    if (i == 11) out += ':';  // GUID prefix : entity id
+  }
+  return out;
+}
 
 const char* to_string(NodeState s) {
   switch (s) {

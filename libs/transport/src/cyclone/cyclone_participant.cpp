@@ -66,17 +66,6 @@ int partner_readers_matched(dds_entity_t writer) {
   return partners;
 }
 
-std::string hex_guid(const unsigned char* v, std::size_t n) {
-  std::string out;
-  char b[3];
-  for (std::size_t i = 0; i < n; ++i) {
-    std::snprintf(b, sizeof b, "%02x", v[i]);
-    out += b;
-    if (i == 11) out += ':';  // GUID prefix : entity id
-  }
-  return out;
-}
-
 // "GUID <hex>, process <name> (pid <n>) on <host>" for every writer matched with `reader`;
 // the process and host come from the properties a Cyclone participant announces (other
 // vendors' participants announce none).
@@ -93,7 +82,7 @@ std::vector<std::string> describe_matched_writers(dds_entity_t reader) {
   for (std::size_t i = 0; i < std::min<std::size_t>(static_cast<std::size_t>(n), handles.size()); ++i) {
     dds_builtintopic_endpoint_t* w = dds_get_matched_publication_data(reader, handles[i]);
     if (w == nullptr) continue;
-    std::string text = "GUID " + hex_guid(w->key.v, sizeof w->key.v);
+    std::string text = "GUID " + guid_text(w->key.v);
     for (dds_return_t j = 0; j < np; ++j) {
       const auto* p = static_cast<const dds_builtintopic_participant_t*>(samples[j]);
       if (!infos[j].valid_data || std::memcmp(p->key.v, w->participant_key.v, sizeof p->key.v) != 0) continue;
@@ -121,13 +110,14 @@ int subscription_matched(dds_entity_t reader) {
 
 // Takes one sample into `buffer` (a zeroed struct of the topic type); skips invalid
 // samples (disposal/unregistration notices). Returns false when none is left.
-bool take_one(dds_entity_t reader, void* buffer) {
+bool take_one(dds_entity_t reader, void* buffer, dds_sample_info_t* info_out = nullptr) {
   for (;;) {
     void* samples[1] = {buffer};
     dds_sample_info_t info;
     dds_return_t n = dds_take(reader, samples, &info, 1, 1);
     if (n < 0) fail("take", n);
     if (n == 0) return false;
+    if (info_out != nullptr) *info_out = info;
     if (info.valid_data) return true;
   }
 }
@@ -208,6 +198,11 @@ class CycloneControlWriter final : public ControlWriter {
     if (rc != DDS_RETCODE_OK) fail("write control", rc);
   }
   int matched_readers() const override { return publication_matched(writer_); }
+  std::string guid() const override {
+    dds_guid_t g;
+    if (dds_get_guid(writer_, &g) != DDS_RETCODE_OK) return {};
+    return guid_text(g.v);
+  }
 
  private:
   dds_entity_t writer_;
@@ -219,9 +214,16 @@ class CycloneControlReader final : public ControlReader {
   ~CycloneControlReader() override { dds_delete(reader_); }
   std::optional<ControlMessage> take() override {
     mechsim_msg_Control c{};
-    if (!take_one(reader_, &c)) return std::nullopt;
-    return ControlMessage{c.header.run_id, static_cast<ControlCommand>(c.command), c.end_time,
-                          c.macro_step, static_cast<RunMode>(c.mode), c.rtf, c.start_wall_ns};
+    dds_sample_info_t info;
+    if (!take_one(reader_, &c, &info)) return std::nullopt;
+    ControlMessage m{c.header.run_id, static_cast<ControlCommand>(c.command), c.end_time,
+                     c.macro_step, static_cast<RunMode>(c.mode), c.rtf, c.start_wall_ns, {}};
+    // The sender: its matched-publication data, while it is matched (it is, as it just wrote).
+    if (dds_builtintopic_endpoint_t* w = dds_get_matched_publication_data(reader_, info.publication_handle)) {
+      m.writer = guid_text(w->key.v);
+      dds_builtintopic_free_endpoint(w);
+    }
+    return m;
   }
 
   int matched_writers() const override { return subscription_matched(reader_); }

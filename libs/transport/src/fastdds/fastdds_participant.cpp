@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <limits>
 #include <map>
 #include <mutex>
@@ -217,14 +218,22 @@ int subscription_matched(dds::DataReader* r) {
 
 // Takes one valid sample into `data` (a generated object); skips disposal/unregistration
 // notices. Returns false when none is left.
-bool take_one(dds::DataReader* reader, void* data) {
-  dds::SampleInfo info;
+bool take_one(dds::DataReader* reader, void* data, dds::SampleInfo* info_out = nullptr) {
+  dds::SampleInfo local;
+  dds::SampleInfo& info = info_out != nullptr ? *info_out : local;
   for (;;) {
     ReturnCode rc = reader->take_next_sample(data, &info);
     if (rc == ReturnCode::RETCODE_NO_DATA) return false;
     if (rc != ReturnCode::RETCODE_OK) fail("take on " + reader->get_topicdescription()->get_name());
     if (info.valid_data) return true;
   }
+}
+
+std::string guid_text(const eprosima::fastrtps::rtps::GUID_t& g) {
+  unsigned char bytes[16];
+  std::memcpy(bytes, g.guidPrefix.value, 12);
+  std::memcpy(bytes + 12, g.entityId.value, 4);
+  return mechsim::transport::guid_text(bytes);
 }
 
 // Base of every writer/reader: keeps the core alive and deletes its entity.
@@ -307,6 +316,7 @@ class FastControlWriter final : public ControlWriter, Endpoint {
     if (!writer_->write(&c)) fail("write control");
   }
   int matched_readers() const override { return publication_matched(writer_); }
+  std::string guid() const override { return guid_text(writer_->guid()); }
 
  private:
   dds::DataWriter* writer_;
@@ -319,8 +329,10 @@ class FastControlReader final : public ControlReader, Endpoint {
   ~FastControlReader() override { core_->delete_reader(reader_, condition_); }
   std::optional<ControlMessage> take() override {
     mechsim::msg::Control c;
-    if (!take_one(reader_, &c)) return std::nullopt;
+    dds::SampleInfo info;
+    if (!take_one(reader_, &c, &info)) return std::nullopt;
     ControlMessage m;
+    m.writer = guid_text(info.sample_identity.writer_guid());
     m.run_id = c.header().run_id();
     m.command = static_cast<ControlCommand>(c.command());
     m.end_time = c.end_time();

@@ -15,6 +15,8 @@ struct NodeRunOptions {
   std::string run_dir;              // where <node>.outputs.bin goes ("" = no output log)
   std::uint64_t run_id = 0;
   int domain = 0;                   // for messages
+  // GUID of the launcher's control writer (transport::guid_text); "" = not checked (in process).
+  std::string control_writer;
   double heartbeat_s = 0.1;         // status period while waiting or stepping
   double start_timeout_s = 120.0;   // give up when no start command arrives
   const std::atomic<bool>* stop_requested = nullptr;  // set by the node's signal handler

@@ -26,7 +26,14 @@ struct ControlMessage {
   RunMode mode = RunMode::lockstep;
   double rtf = 1.0;
   std::int64_t start_wall_ns = 0;  // realtime mode: Unix time of step 0 (ns)
+  // Not on the wire: the GUID of the writer that sent it (guid_text), filled by the reader
+  // so a node can refuse commands that are not the launcher's; "" where none is known.
+  std::string writer;
 };
+
+// An RTPS GUID (12-byte prefix, 4-byte entity id) as text, "<24 hex>:<8 hex>", the same for
+// both vendors, so a node on one vendor can compare a writer on the other.
+std::string guid_text(const unsigned char (&guid)[16]);
 
 enum class NodeState : std::int32_t { starting = 0, ready = 1, running = 2, done = 3, failed = 4 };
 const char* to_string(NodeState s);

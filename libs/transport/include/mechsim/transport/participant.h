@@ -50,11 +50,15 @@ class ControlWriter {
   virtual ~ControlWriter() = default;
   virtual void write(const ControlMessage& message) = 0;
   virtual int matched_readers() const = 0;
+  // This writer's GUID (guid_text): the launcher hands it to its nodes, which then take
+  // commands from nobody else; "" where the transport has none (in process).
+  virtual std::string guid() const { return {}; }
 };
 
 class ControlReader {
  public:
   virtual ~ControlReader() = default;
+  // The next command, with ControlMessage::writer set to the sender's GUID where known.
   virtual std::optional<ControlMessage> take() = 0;
   // Writers of mechsim/control matched with this reader (the launcher: one); -1 = unknown.
   virtual int matched_writers() const { return -1; }
