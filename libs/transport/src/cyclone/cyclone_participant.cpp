@@ -204,6 +204,8 @@ class CycloneControlWriter final : public ControlWriter {
     c.mode = static_cast<int32_t>(m.mode);
     c.rtf = m.rtf;
     c.start_wall_ns = m.start_wall_ns;
+    c.header.step = m.step;
+    c.generation = m.generation;
     dds_return_t rc = dds_write(writer_, &c);
     if (rc != DDS_RETCODE_OK) fail("write control", rc);
   }
@@ -221,7 +223,7 @@ class CycloneControlReader final : public ControlReader {
     mechsim_msg_Control c{};
     if (!take_one(reader_, &c)) return std::nullopt;
     return ControlMessage{c.header.run_id, static_cast<ControlCommand>(c.command), c.end_time,
-                          c.macro_step, static_cast<RunMode>(c.mode), c.rtf, c.start_wall_ns};
+                          c.macro_step, static_cast<RunMode>(c.mode), c.rtf, c.start_wall_ns, c.header.step, c.generation};
   }
 
   int matched_writers() const override { return subscription_matched(reader_); }
