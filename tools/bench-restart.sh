@@ -45,7 +45,7 @@ for i in $(seq "$runs"); do
     --json "$tmp/k.json" >"$tmp/k.log" 2>&1 &
   launcher=$!
   run=""
-  for _ in $(seq 3000); do run=$(ls -d "$tmp"/k/*/ 2>/dev/null | head -1); [ -n "$run" ] && [ -f "$run/$node.outputs.bin" ] && break; sleep 0.01; done
+  for _ in $(seq 3000); do run=$(ls -d "$tmp"/k/*/ 2>/dev/null | head -1); run=${run%/}; [ -n "$run" ] && [ -f "$run/$node.outputs.bin" ] && break; sleep 0.01; done
   # The pid of NODE of this run: its command line names the run folder.
   pid=""
   for _ in $(seq 3000); do
