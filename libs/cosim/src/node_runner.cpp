@@ -431,6 +431,9 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
     bool initialised = false;
     // --- restart with rollback (checkpoint.h, docs/faults.md) ---
     bool announce_step = false;  // after a resume: the first step taken goes to the launcher at once
+    // After a resume the partners of a restarted node hold while its dead writer lingers
+    // (its lease, under kForeignWriterGrace): a wait that long is no partition.
+    Clock::time_point partition_exempt_until{};
     auto write_node_checkpoint = [&] {
       log->flush();
       std::int64_t events_bytes = 0;
@@ -487,6 +490,7 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
       beat.set_state(transport::NodeState::running);
       republish();
       announce_step = true;
+      partition_exempt_until = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(kForeignWriterGrace));
       return true;
     };
     if (resumed) {
@@ -494,6 +498,7 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
       std::printf("resumed: from step %llu (generation %d)\n", static_cast<unsigned long long>(header.step), generation);
       republish();
       announce_step = true;
+      partition_exempt_until = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(kForeignWriterGrace));
     }
     bool has_gauss_seidel_input = false;
     for (const auto& edge : node.inputs) has_gauss_seidel_input = has_gauss_seidel_input || edge.order == config::EdgeOrder::gauss_seidel;
@@ -514,7 +519,7 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
     auto waiting_since = Clock::now();
     std::uint64_t waiting_step = UINT64_MAX;
     auto check_partition = [&] {
-      if (stepper.step() != waiting_step || !initialised) {
+      if (stepper.step() != waiting_step || !initialised || Clock::now() < partition_exempt_until) {
         waiting_step = initialised ? stepper.step() : UINT64_MAX;
         waiting_since = Clock::now();
         return;
