@@ -46,10 +46,27 @@ long rows_written(const fs::path& run, const std::string& node) {
 
 // The pid of the running process of `node` in the runs folder `runs` (-1: none now).
 pid_t node_pid(const fs::path& runs, const std::string& node) {
-  for (pid_t p : processes_mentioning("--node " + node + " --run-id"))
-    if (slurp("/proc/" + std::to_string(p) + "/cmdline").find(runs.string()) != std::string::npos) return p;
+  for (int attempt = 0; attempt < 3; ++attempt) {
+    try {
+      for (pid_t p : processes_mentioning("--node " + node + " --run-id"))
+        if (slurp("/proc/" + std::to_string(p) + "/cmdline").find(runs.string()) != std::string::npos) return p;
+      return -1;
+    } catch (const std::exception&) {
+      // a process that ended while its /proc entry was read: look again
+    }
+  }
   return -1;
 }
+
+// Stops a launcher the test leaves early (a failed assertion): SIGTERM stops its nodes.
+struct StopOnExit {
+  pid_t pid;
+  ~StopOnExit() {
+    if (pid <= 0) return;
+    ::kill(pid, SIGTERM);
+    wait_for(pid, "/dev/null", 15);
+  }
+};
 
 // Waits until the node's log says it resumed `times` times: the run goes on after a restart.
 bool wait_resumed(const fs::path& run, const std::string& node, int times) {
@@ -118,6 +135,7 @@ class Restart : public RunFolderTest {
     args.insert(args.end(), {"--set", "faults.restart=on_failure", "--set", "faults.checkpoint_every=" + std::to_string(every),
                              "--set", "faults.restart_limit=" + std::to_string(kills)});
     const pid_t launcher = spawn(launch_args(scene_path(scene), "killed", args), log("killed"));
+    StopOnExit stop{launcher};
     const fs::path run = wait_for_run_folder("killed");
     ASSERT_FALSE(run.empty());
     std::vector<std::string> killed;
@@ -143,6 +161,7 @@ class Restart : public RunFolderTest {
       ASSERT_TRUE(wait_resumed(run, node, ++restarts_of[node])) << slurp(log("killed"));
     }
     CommandResult r = wait_for(launcher, log("killed"), 180);
+    stop.pid = -1;
     ASSERT_FALSE(r.timed_out) << r.output;
     ASSERT_EQ(r.exit_code, 0) << r.output;
     const json summary = json::parse(slurp((run / "summary.json").string()));
@@ -181,6 +200,7 @@ TEST_F(Restart, AKillDuringACheckpointRollsBackToThePreviousOne) {
   std::vector<std::string> args = extra;
   args.insert(args.end(), {"--set", "faults.restart=on_failure", "--set", "faults.checkpoint_every=100"});
   const pid_t launcher = spawn(launch_args(scene_path("nc_slide_loop_1ms.yaml"), "killed", args), log("killed"));
+  StopOnExit stop{launcher};
   ::unsetenv("MECHSIM_TEST_CHECKPOINT_PAUSE");
   const fs::path run = wait_for_run_folder("killed");
   ASSERT_FALSE(run.empty());
@@ -192,6 +212,7 @@ TEST_F(Restart, AKillDuringACheckpointRollsBackToThePreviousOne) {
   ASSERT_GT(slide, 0);
   ::kill(slide, SIGKILL);
   CommandResult r = wait_for(launcher, log("killed"), 120);
+  stop.pid = -1;
   ASSERT_FALSE(r.timed_out) << r.output;
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const json summary = json::parse(slurp((run / "summary.json").string()));
@@ -209,6 +230,7 @@ TEST_F(Restart, MoreDeathsThanTheLimitStopTheRunCleanly) {
                                            {"--end", "600 s", "--set", "faults.restart=on_failure", "--set",
                                             "faults.checkpoint_every=50", "--set", "faults.restart_limit=1"}),
                                log("limit"));
+  StopOnExit stop{launcher};
   const fs::path run = wait_for_run_folder("limit");
   ASSERT_FALSE(run.empty());
   for (int kill = 0; kill < 2; ++kill) {
@@ -224,6 +246,7 @@ TEST_F(Restart, MoreDeathsThanTheLimitStopTheRunCleanly) {
     if (kill == 0) ASSERT_TRUE(wait_resumed(run, "tacho", 1)) << slurp(log("limit"));
   }
   CommandResult r = wait_for(launcher, log("limit"), 30);
+  stop.pid = -1;
   ASSERT_FALSE(r.timed_out) << r.output;
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_NE(r.output.find("node 'tacho' killed by signal 9 (Killed) after 1 restart(s): faults.restart_limit 1 reached"), std::string::npos)
