@@ -198,7 +198,8 @@ TEST_F(Restart, AKillDuringACheckpointRollsBackToThePreviousOne) {
   ASSERT_EQ(plain.exit_code, 0) << plain.output;
   ::setenv("MECHSIM_TEST_CHECKPOINT_PAUSE", "slide:300:3", 1);  // inherited by the launcher and its nodes
   std::vector<std::string> args = extra;
-  args.insert(args.end(), {"--set", "faults.restart=on_failure", "--set", "faults.checkpoint_every=100"});
+  // Recorded too: the recording keeps the first copy of each step (docs/faults.md, 'Recording').
+  args.insert(args.end(), {"--set", "faults.restart=on_failure", "--set", "faults.checkpoint_every=100", "--set", "record=true"});
   const pid_t launcher = spawn(launch_args(scene_path("nc_slide_loop_1ms.yaml"), "killed", args), log("killed"));
   StopOnExit stop{launcher};
   ::unsetenv("MECHSIM_TEST_CHECKPOINT_PAUSE");
@@ -220,6 +221,11 @@ TEST_F(Restart, AKillDuringACheckpointRollsBackToThePreviousOne) {
   ASSERT_EQ(restarts.size(), 1u) << summary.dump(1);
   EXPECT_EQ(restarts[0]["node"], "slide");
   EXPECT_EQ(restarts[0]["rollback_step"], 200) << "the half-written checkpoint of step 300 must not be used";
+  ASSERT_TRUE(summary.contains("recording")) << summary.dump(1);
+  EXPECT_TRUE(summary["recording"]["complete"].get<bool>()) << summary["recording"].dump(1);
+  bool repeats = false;
+  for (const auto& t : summary["recording"]["topics"]) repeats = repeats || t.contains("repeated_after_rollback");
+  EXPECT_TRUE(repeats) << "the steps after the checkpoint were sent twice; the recording counts the second copies";
   expect_identical_outputs(run_folder("plain"), run, {"servo", "tacho", "slide"});
 }
 

@@ -155,8 +155,10 @@ void write_checkpoint(const std::string& run_dir, const std::string& node, const
     write_all(fd, bytes.data(), half, temp);
     pause_if_asked(node, checkpoint.stepper.step, temp_was_left);
     write_all(fd, bytes.data() + half, bytes.size() - half, temp);
-    // On the disk before the name says it is complete (the rename below).
-    if (::fdatasync(fd) != 0) throw std::runtime_error(temp + ": cannot sync the checkpoint: " + std::strerror(errno));
+    // No fdatasync: what a restart survives is the death of a process, whose writes are in
+    // the kernel's page cache and whose rename below is atomic; a crash of the machine ends
+    // the run (the launcher dies too). A sync would stall every node of the lock-step
+    // run whenever the disk is busy (measured: docs/faults.md).
   } catch (...) {
     ::close(fd);
     throw;

@@ -1,7 +1,7 @@
 // Checkpoints of a node for restart with rollback (docs/faults.md): every
 // `faults.checkpoint_every` steps a node writes its complete state at that step boundary
 // into the run folder, `checkpoints/<node>.<step>.ckpt`. A checkpoint is written to a
-// temporary file, synced and renamed into place, and the older ones are removed only
+// temporary file and renamed into place, and the older ones are removed only
 // afterwards, so a process killed while writing leaves its previous checkpoint usable; a
 // file with the .ckpt name is always complete. The launcher picks the newest step every
 // node holds (common_checkpoint) and each node, restarted or live, restores it.
@@ -25,7 +25,7 @@ struct NodeCheckpoint {
 
 std::string checkpoint_path(const std::string& run_dir, const std::string& node, std::uint64_t step);
 
-// Writes atomically (temporary file, fdatasync, rename), then removes all but the newest
+// Writes atomically (temporary file, rename), then removes all but the newest
 // `keep` checkpoints of the node. Throws std::runtime_error naming the file.
 void write_checkpoint(const std::string& run_dir, const std::string& node, const NodeCheckpoint& checkpoint, int keep = 3);
 
