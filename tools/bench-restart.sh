@@ -6,13 +6,14 @@
 #  2. how long a kill stops the run: a node SIGKILLed mid-run, the launcher's summary
 #     (restart.restarts[]) gives the time from seeing the death to the resume command and
 #     to every node stepping past the checkpoint again; medians.
-#   tools/bench-restart.sh [RUNS=5] [SCENE=config/scenes/nc_slide_loop_1ms.yaml] [END=20 s] [NODE=slide]
+#   tools/bench-restart.sh [RUNS=5] [SCENE=config/scenes/nc_slide_loop_1ms.yaml] [END=20 s] [NODE=slide] [PART=both|cost|kill]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 runs=${1:-5}
 scene=${2:-config/scenes/nc_slide_loop_1ms.yaml}
 end=${3:-20 s}
 node=${4:-slide}
+part=${5:-both}
 mechsim=build/bin/mechsim
 tmp=$(mktemp -d)
 launcher=""
@@ -26,7 +27,8 @@ median() { printf "%s\n" "$@" | sort -g | awk '{a[NR]=$1} END {print (NR ? a[int
 
 echo "scene $scene, --end '$end', $runs runs each"
 plain=(); ckpt=()
-for i in $(seq "$runs"); do
+[ "$part" = kill ] && runs_cost=0 || runs_cost=$runs
+for i in $(seq "$runs_cost"); do
   "$mechsim" launch "$scene" --end "$end" --no-plot --no-progress --runs-dir "$tmp/runs" --json "$tmp/p.json" >/dev/null 2>&1
   plain+=("$(field "$tmp/p.json" "d['steps_per_second']")")
   "$mechsim" launch "$scene" --end "$end" --set faults.restart=on_failure --no-plot --no-progress --runs-dir "$tmp/runs" \
@@ -35,8 +37,11 @@ for i in $(seq "$runs"); do
   echo "run $i: without checkpoints ${plain[-1]} steps/s, checkpoint every $(field "$tmp/c.json" "d['restart']['checkpoint_every']") steps ${ckpt[-1]} steps/s"
   rm -rf "$tmp/runs"
 done
-mp=$(median "${plain[@]}"); mc=$(median "${ckpt[@]}")
-echo "median: without $mp steps/s, with checkpoints $mc steps/s, ratio $(python3 -c "print(f'{$mc/$mp:.3f}')")"
+if [ "$runs_cost" -gt 0 ]; then
+  mp=$(median "${plain[@]}"); mc=$(median "${ckpt[@]}")
+  echo "median: without $mp steps/s, with checkpoints $mc steps/s, ratio $(python3 -c "print(f'{$mc/$mp:.3f}')")"
+fi
+[ "$part" = cost ] && exit 0
 
 # 2. A kill of NODE once its output log holds 400 kB (some thousand steps in).
 resume=(); stepping=()
@@ -45,16 +50,16 @@ for i in $(seq "$runs"); do
     --json "$tmp/k.json" >"$tmp/k.log" 2>&1 &
   launcher=$!
   run=""
-  for _ in $(seq 3000); do run=$(ls -d "$tmp"/k/*/ 2>/dev/null | head -1); run=${run%/}; [ -n "$run" ] && [ -f "$run/$node.outputs.bin" ] && break; sleep 0.01; done
+  for _ in $(seq 3000); do run=$(ls -d "$tmp"/k/*/ 2>/dev/null | head -1 || true); run=${run%/}; [ -n "$run" ] && [ -f "$run/$node.outputs.bin" ] && break; sleep 0.01; done
   # The pid of NODE of this run: its command line names the run folder.
   pid=""
   for _ in $(seq 3000); do
     size=$(stat -c %s "$run/$node.outputs.bin" 2>/dev/null || echo 0)
     if [ "$size" -gt 400000 ]; then
       pid=$(for p in /proc/[0-9]*; do
-              c=$(tr '\0' ' ' < "$p/cmdline" 2>/dev/null || true)
+              c=$( { tr '\0' ' ' < "$p/cmdline"; } 2>/dev/null || true)
               case "$c" in *"--node $node --run-id"*"$run"*) basename "$p";; esac
-            done | head -1)
+            done | head -1 || true)
       [ -n "$pid" ] && break
     fi
     sleep 0.01
