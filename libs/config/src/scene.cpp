@@ -245,11 +245,6 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
                              "--domain of the hosts' `mechsim agent` (docs/hosts.md)");
     }
     spec.restart = (p.has("restart") ? p.choice("restart", {"never", "on_failure"}) : scene.faults.restart) == "on_failure";
-    // A node on another host is started by its agent, which cannot restart it yet.
-    if (spec.restart && !spec.host.empty())
-      (p.has("restart") ? p.child("restart") : p.child("host"))
-          .fail("restart: on_failure is built for participants on the launcher's host only; a participant on host '" +
-                spec.host + "' cannot be restarted (set restart: never for it; docs/faults.md)");
     // Real-time pacing counts from the start command's wall time: a rolled-back run would
     // be late by the whole repeated stretch.
     if (spec.restart && scene.mode == "realtime")
@@ -265,6 +260,15 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
     spec.key_path = p.path();
     scene.participants.push_back(std::move(spec));
   }
+
+  // Restart with rollback runs on the launcher's host only: an agent cannot restart a node,
+  // and the launcher finds the common checkpoint in its own run folder.
+  if (scene.checkpointing())
+    for (const auto& p : scene.participants)
+      if (!p.host.empty())
+        participants.child(p.name).child("host").fail(
+            "a scene with restart: on_failure runs on the launcher's host only (participant on host '" + p.host +
+            "'); restart with rollback across hosts is not built (docs/faults.md)");
 
   if (auto conns = root.optional_child("connections")) {
     if (!conns->is_sequence()) conns->fail("expected a list of connections");

@@ -167,6 +167,11 @@ TEST(SceneValidation, RestartKeys) {
   expect_refused(cam_press_with("mode: lockstep", "mode: lockstep\nfaults: {restart_limit: 0}"), "faults.restart_limit", ">= 1");
   expect_refused(cam_press_with("mode: lockstep", "mode: lockstep\nfaults: {checkpoint_every: 0}"), "faults.checkpoint_every", ">= 1");
   expect_refused(cam_press_with("mode: lockstep", "mode: realtime\nfaults: {restart: on_failure}"), "faults.restart", "lockstep only");
+  // Any participant on another host: the launcher could not find its checkpoints.
+  std::string hosts = cam_press_with("mode: lockstep", "mode: lockstep\ndds: {domain: 5}\nhosts: {b: {address: 10.0.0.2}}\n"
+                                                       "faults: {restart: on_failure}");
+  hosts.replace(hosts.find("    type: follower"), 18, "    type: follower\n    host: b\n    restart: never");
+  expect_refused(hosts, "participants.follower.host", "launcher's host only");
 }
 
 }  // namespace
