@@ -288,8 +288,9 @@ RunOutcome Run::run_nodes() {
       const auto& w = watch_[p->name];
       bool clean = !p->signalled && p->exit_code == 0;
       const config::ParticipantSpec* spec = scene_.find_participant(p->name);
-      // A node that reported failure itself (diverged, foreign data, ...) would fail again.
-      const bool crashed = p->signalled || !(w.seen && w.last.state == transport::NodeState::failed);
+      // Restarted when it died on a signal (killed, a crash, the OOM killer); a node that
+      // exits with an error of its own (diverged, foreign data, ...) would fail again.
+      const bool crashed = p->signalled;
       if (!clean && running && spec && spec->restart && p->host.empty() && crashed) {
         if (restarts_[p->name] < scene_.faults.restart_limit) {
           to_restart.push_back(p->name);
