@@ -45,6 +45,12 @@ int node_main(const char* node_type, int argc, char** argv) {
   std::string replay;
   app.add_option("--replay", replay,
                  "publish the values of this table (written by `mechsim launch --replay`) instead of computing them");
+  std::uint64_t resume_step = 0;
+  int generation = 0;
+  auto* resume_option = app.add_option("--resume", resume_step,
+                                       "restart after a crash: resume from this node's checkpoint of this step in the run "
+                                       "folder, once the launcher sends resume (docs/faults.md)");
+  app.add_option("--generation", generation, "the rollback generation a resumed node belongs to")->needs(resume_option);
   CLI11_PARSE(app, argc, argv);
 
   std::signal(SIGINT, on_signal);
@@ -82,6 +88,8 @@ int node_main(const char* node_type, int argc, char** argv) {
     options.domain = domain;
     options.control_writer = control_writer;
     options.stop_requested = &g_stop;
+    if (resume_option->count() > 0) options.resume_step = resume_step;
+    options.generation = generation;
     return cosim::run_node(plan, node_name, *participant, options);
   } catch (const config::ConfigError& e) {
     std::cerr << e.what() << "\n";

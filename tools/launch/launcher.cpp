@@ -21,6 +21,7 @@
 #include "domain_lock.h"
 #include "hosts.h"
 #include "mechsim/config/scene.h"
+#include "mechsim/cosim/checkpoint.h"
 #include "mechsim/cosim/composer.h"
 #include "mechsim/cosim/output_log.h"
 #include "mechsim/cosim/pacer.h"
@@ -82,6 +83,17 @@ struct RunOutcome {
   double wall_time_s = 0.0;  // start command -> all nodes done
 };
 
+// One restart with rollback (docs/faults.md), for the summary.
+struct RestartRecord {
+  std::string node, exit;
+  std::uint64_t last_step = 0;      // the dead node's last step (output log or heartbeat)
+  std::uint64_t rollback_step = 0;  // the checkpoint every node went back to
+  int generation = 0;
+  double detected_s = 0;            // since the start command: the launcher saw the death
+  double resumed_s = -1;            // every node held the checkpoint; resume sent
+  double stepping_s = -1;           // every node's status past the checkpoint again
+};
+
 class Run {
  public:
   Run(const LaunchOptions& o, config::Scene& scene, cosim::ScenePlan& plan, HostLayout hosts)
@@ -92,6 +104,7 @@ class Run {
  private:
   RunOutcome run_nodes();
   void fail(RunOutcome& out, const std::string& node, const std::string& reason);
+  std::uint64_t last_step_of(const std::string& node) const;
   std::string divergence_advice(const std::string& node) const;
   std::string divergence_advice_text(const std::string& node) const;
   void print_progress(double since_start, bool final_line);
@@ -115,6 +128,9 @@ class Run {
   bool tty_ = false;
   std::map<std::string, std::string> replay_tables_;  // node -> table its process replays
   std::unique_ptr<RunRecording> recording_;
+  std::map<std::string, std::vector<std::string>> node_args_;  // local nodes: their command line
+  std::map<std::string, int> restarts_;                          // per node
+  std::vector<RestartRecord> restart_log_;
   mutable std::optional<std::string> divergence_advice_;  // computed once (it runs a search)
 };
 
@@ -173,18 +189,23 @@ void Run::fail(RunOutcome& out, const std::string& node, const std::string& reas
   out.ok = false;
   out.failed_node = node;
   out.reason = reason;
+  out.failed_step = last_step_of(node);
+}
+
+std::uint64_t Run::last_step_of(const std::string& node) const {
   auto it = watch_.find(node);
-  out.failed_step = it != watch_.end() && it->second.seen ? it->second.last.header.step : 0;
+  std::uint64_t step = it != watch_.end() && it->second.seen ? it->second.last.header.step : 0;
   // The node's own output log knows its last step better than the last heartbeat did.
   try {
     const std::string path = run_dir_ + "/" + node + ".outputs.bin";
     if (!node.empty() && fs::exists(path)) {
       const std::size_t rows = cosim::read_output_log(path).rows();
-      if (rows > 0) out.failed_step = std::max<std::uint64_t>(out.failed_step, rows - 1);
+      if (rows > 0) step = std::max<std::uint64_t>(step, rows - 1);
     }
   } catch (const std::exception&) {
     // a log too damaged to read: keep the heartbeat's figure
   }
+  return step;
 }
 
 void Run::print_progress(double since_start, bool final_line) {
@@ -245,6 +266,7 @@ RunOutcome Run::run_nodes() {
       args.push_back(it->second);
     }
     processes_.start(node.name(), exe, args, run_dir_ + "/" + node.name() + ".log");
+    node_args_[node.name()] = args;
     watch_[node.name()] = {};
   }
 
@@ -263,10 +285,26 @@ RunOutcome Run::run_nodes() {
       it->second.last_seen = Clock::now();
     }
   };
+  // Restart with rollback (docs/faults.md): the nodes that died while the run was going
+  // and may be restarted.
+  std::vector<std::string> to_restart;
   auto check_exits = [&](bool running) {
     for (NodeProcess* p : processes_.poll()) {
       const auto& w = watch_[p->name];
       bool clean = !p->signalled && p->exit_code == 0;
+      const config::ParticipantSpec* spec = scene_.find_participant(p->name);
+      // Restarted when it died on a signal (killed, a crash, the OOM killer); a node that
+      // exits with an error of its own (diverged, foreign data, ...) would fail again.
+      const bool crashed = p->signalled;
+      if (!clean && running && spec && spec->restart && p->host.empty() && crashed) {
+        if (restarts_[p->name] < scene_.faults.restart_limit) {
+          to_restart.push_back(p->name);
+          continue;
+        }
+        fail(out, p->name, "node '" + p->name + "' " + p->describe_exit() + " after " + std::to_string(restarts_[p->name]) +
+                               " restart(s): faults.restart_limit " + std::to_string(scene_.faults.restart_limit) + " reached");
+        continue;
+      }
       if (!clean || !running) {
         std::string reason = "node '" + p->name + "' " + p->describe_exit();
         std::string message = w.seen ? w.last.message : "";
@@ -281,6 +319,92 @@ RunOutcome Run::run_nodes() {
         fail(out, p->name, reason);
       }
     }
+  };
+
+  // Every node back to the newest checkpoint they all hold: the dead ones started again
+  // from it, the live ones told to roll back; the run resumes once each holds it.
+  transport::ControlMessage start;
+  Clock::time_point started;
+  std::int32_t generation = 0;
+  auto roll_back = [&] {
+    const double detected = seconds_since(started);
+    std::vector<std::string> names;
+    for (const auto& p : processes_.processes()) names.push_back(p.name);
+    const auto common = cosim::common_checkpoint(run_dir_, names);
+    const std::string dead = to_restart.front();
+    NodeProcess* first = nullptr;
+    for (auto& p : processes_.processes())
+      if (p.name == dead) first = &p;
+    if (!common) {
+      fail(out, dead, "node '" + dead + "' " + first->describe_exit() + " before every node held a checkpoint (the first is at step " +
+                          std::to_string(scene_.faults.checkpoint_every) + ", faults.checkpoint_every): no restart");
+      return;
+    }
+    ++generation;
+    for (const auto& name : to_restart) {
+      RestartRecord r;
+      r.node = name;
+      for (auto& p : processes_.processes())
+        if (p.name == name) r.exit = p.describe_exit();
+      r.last_step = last_step_of(name);
+      r.rollback_step = *common;
+      r.generation = generation;
+      r.detected_s = detected;
+      ++restarts_[name];
+      if (tty_ && opt_.progress) std::fprintf(stderr, "\n");
+      std::fprintf(stderr, "mechsim: node '%s' %s at step %llu: restart %d of %ld, every node back to step %llu\n", name.c_str(),
+                   r.exit.c_str(), static_cast<unsigned long long>(r.last_step), restarts_[name], scene_.faults.restart_limit,
+                   static_cast<unsigned long long>(*common));
+      restart_log_.push_back(r);
+    }
+    to_restart.clear();
+    transport::ControlMessage rollback = start;
+    rollback.command = transport::ControlCommand::rollback;
+    rollback.step = *common;
+    rollback.generation = generation;
+    control_->write(rollback);
+    const std::string expected = cosim::rolled_back_message(*common, generation);
+    auto restart = [&](NodeProcess& p) {
+      std::vector<std::string> args = node_args_.at(p.name);
+      args.insert(args.end(), {"--resume", std::to_string(*common), "--generation", std::to_string(generation)});
+      processes_.restart(p.name, args, run_dir_ + "/" + p.name + ".log");
+      watch_[p.name].last_seen = Clock::now();
+      watch_[p.name].done_at_s = -1;  // it finishes again
+    };
+    // Every exited node, also one that finished (exit 0) before the rollback reached it.
+    for (auto& p : processes_.processes())
+      if (p.exited) restart(p);
+    const auto asked = Clock::now();
+    for (;;) {
+      take_status();
+      for (NodeProcess* p : processes_.poll()) {
+        if (!p->signalled && p->exit_code == 0) {  // it finished before it saw the rollback
+          restart(*p);
+          continue;
+        }
+        fail(out, p->name, "node '" + p->name + "' " + p->describe_exit() + " during the rollback to step " +
+                               std::to_string(*common) + " (see " + run_dir_ + "/" + p->name + ".log)");
+        return;
+      }
+      bool all = true;
+      for (const auto& [name, w] : watch_) all = all && w.last.state == transport::NodeState::ready && w.last.message == expected;
+      if (all) break;
+      if (g_interrupt) return;
+      if (seconds_since(asked) > opt_.ready_timeout_s) {
+        std::string late;
+        for (const auto& [name, w] : watch_)
+          if (w.last.state != transport::NodeState::ready || w.last.message != expected) late += (late.empty() ? "" : ", ") + name;
+        fail(out, late, "nodes not back at step " + std::to_string(*common) + " after " + std::to_string(opt_.ready_timeout_s) + " s: " + late);
+        return;
+      }
+      participant_->wait(std::chrono::milliseconds(2));
+    }
+    transport::ControlMessage resume = rollback;
+    resume.command = transport::ControlCommand::resume;
+    control_->write(resume);
+    for (auto& r : restart_log_)
+      if (r.generation == generation) r.resumed_s = seconds_since(started);
+    for (auto& [name, w] : watch_) w.last_seen = Clock::now();
   };
 
   // 1. Every node ready (matched end to end with its partners).
@@ -316,13 +440,13 @@ RunOutcome Run::run_nodes() {
 
   // 2. Start, then watch until every node is done.
   const bool realtime = scene_.mode == "realtime";
-  transport::ControlMessage start{run_id_, transport::ControlCommand::start, scene_.time.end, scene_.time.step,
-                                  realtime ? transport::RunMode::realtime : transport::RunMode::lockstep, scene_.rtf, 0, {}};
+  start = transport::ControlMessage{run_id_, transport::ControlCommand::start, scene_.time.end, scene_.time.step,
+                                    realtime ? transport::RunMode::realtime : transport::RunMode::lockstep, scene_.rtf, 0, 0, 0, {}};
   // Real-time pacing counts from the start command: step 0 is due a moment after it is
   // sent, so that every node has it by then.
   if (realtime) start.start_wall_ns = cosim::Pacer::now_ns() + 50'000'000;
   control_->write(start);
-  const auto started = Clock::now();
+  started = Clock::now();
   for (auto& [name, w] : watch_) w.last_seen = started;
   auto last_progress = Clock::now();
   for (;;) {
@@ -331,6 +455,19 @@ RunOutcome Run::run_nodes() {
       if (w.last.state == transport::NodeState::done && w.done_at_s < 0) w.done_at_s = seconds_since(started);
     check_exits(true);
     if (!out.reason.empty()) break;
+    if (!to_restart.empty()) {
+      roll_back();
+      if (!out.reason.empty()) break;
+      if (g_interrupt) continue;
+    }
+    // The run steps again once every node is past the checkpoint it went back to.
+    if (!restart_log_.empty() && restart_log_.back().stepping_s < 0 && restart_log_.back().resumed_s >= 0) {
+      bool past = true;
+      for (const auto& [name, w] : watch_) past = past && w.last.state != transport::NodeState::ready && w.last.header.step > restart_log_.back().rollback_step;
+      if (past)
+        for (auto& r : restart_log_)
+          if (r.generation == restart_log_.back().generation) r.stepping_s = seconds_since(started);
+    }
     if (processes_.all_exited()) {
       out.ok = true;
       // The final statuses (done, with the solver statistics) may still be in flight.
@@ -449,6 +586,17 @@ json Run::summarise(const RunOutcome& out) {
   s["dds_vendor"] = scene_.vendor;  // the launcher's own participant
   s["mode"] = scene_.mode;
   s["redundant_samples"] = scene_.faults.redundant();
+  if (scene_.checkpointing()) {
+    json restarts = json::array();
+    for (const auto& r : restart_log_)
+      restarts.push_back({{"node", r.node}, {"exit", r.exit}, {"last_step", r.last_step}, {"rollback_step", r.rollback_step},
+                          {"generation", r.generation}, {"detected_s", r.detected_s}, {"resumed_s", r.resumed_s},
+                          {"stepping_s", r.stepping_s},
+                          {"kill_to_resume_s", r.resumed_s >= 0 ? r.resumed_s - r.detected_s : -1.0},
+                          {"kill_to_stepping_s", r.stepping_s >= 0 ? r.stepping_s - r.detected_s : -1.0}});
+    s["restart"] = {{"checkpoint_every", scene_.faults.checkpoint_every}, {"restart_limit", scene_.faults.restart_limit},
+                    {"restarts", restarts}};
+  }
   s["status"] = out.ok ? "ok" : "failed";
   s["macro_step_s"] = scene_.time.step;
   s["simulated_time_s"] = scene_.time.end - scene_.time.start;

@@ -29,6 +29,24 @@ NodeProcesses::~NodeProcesses() { stop_all(1.0); }
 void NodeProcesses::start(const std::string& name, const std::string& executable,
                           const std::vector<std::string>& args, const std::string& log_path,
                           const std::vector<std::string>& environment) {
+  const pid_t pid = spawn(executable, args, log_path, environment);
+  processes_.push_back({name, executable, pid});
+}
+
+void NodeProcesses::restart(const std::string& name, const std::vector<std::string>& args, const std::string& log_path,
+                            const std::vector<std::string>& environment) {
+  for (auto& p : processes_)
+    if (p.name == name) {
+      if (!p.exited || !p.host.empty()) throw std::logic_error("restart of node '" + name + "', which is running or remote");
+      const pid_t pid = spawn(p.executable, args, log_path, environment);
+      p = NodeProcess{name, p.executable, pid};
+      return;
+    }
+  throw std::logic_error("restart of an unknown node '" + name + "'");
+}
+
+pid_t NodeProcesses::spawn(const std::string& executable, const std::vector<std::string>& args, const std::string& log_path,
+                           const std::vector<std::string>& environment) {
   int log = ::open(log_path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
   if (log < 0) throw std::runtime_error(log_path + ": cannot create log: " + std::strerror(errno));
   std::vector<std::string> argv_storage{executable};
@@ -41,9 +59,9 @@ void NodeProcesses::start(const std::string& name, const std::string& executable
   std::vector<std::string> env_storage;
   for (char** e = environ; *e != nullptr; ++e) {
     const std::string entry = *e;
-    const std::string name = entry.substr(0, entry.find('='));
+    const std::string key = entry.substr(0, entry.find('='));
     bool replaced = false;
-    for (const std::string& o : environment) replaced = replaced || o.substr(0, o.find('=')) == name;
+    for (const std::string& o : environment) replaced = replaced || o.substr(0, o.find('=')) == key;
     if (!replaced) env_storage.push_back(entry);
   }
   env_storage.insert(env_storage.end(), environment.begin(), environment.end());
@@ -65,7 +83,7 @@ void NodeProcesses::start(const std::string& name, const std::string& executable
     ::_exit(127);
   }
   ::close(log);
-  processes_.push_back({name, executable, pid});
+  return pid;
 }
 
 void NodeProcesses::start_remote(const std::string& name, const std::string& address, const std::string& request,

@@ -32,6 +32,10 @@ class NodeProcesses {
   // "NAME=value" entries of `environment` set on top of this process's environment.
   void start(const std::string& name, const std::string& executable, const std::vector<std::string>& args,
              const std::string& log_path, const std::vector<std::string>& environment = {});
+  // Starts an exited local node again (restart with rollback, docs/faults.md): the same
+  // executable with these arguments, its log appended to.
+  void restart(const std::string& name, const std::vector<std::string>& args, const std::string& log_path,
+               const std::vector<std::string>& environment = {});
   // A node on another host, started by its agent (agent_client.h); watched and stopped
   // like a child. `agents` must outlive this object.
   void start_remote(const std::string& name, const std::string& address, const std::string& request, AgentClient& agents);
@@ -43,6 +47,8 @@ class NodeProcesses {
   std::vector<NodeProcess>& processes() { return processes_; }
 
  private:
+  pid_t spawn(const std::string& executable, const std::vector<std::string>& args, const std::string& log_path,
+              const std::vector<std::string>& environment);
   std::vector<NodeProcess> processes_;
   AgentClient* agents_ = nullptr;
 };

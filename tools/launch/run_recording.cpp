@@ -48,6 +48,7 @@ nlohmann::json RunRecording::finish(const std::map<std::string, std::uint64_t>& 
   for (const auto& t : report.topics) {
     nlohmann::json row{{"topic", t.topic}, {"type", t.type}, {"reliable", t.reliable}, {"recorded", t.samples}};
     if (!t.reliable) row["lost"] = t.lost;
+    if (t.repeated > 0) row["repeated_after_rollback"] = t.repeated;
     if (auto it = published_by_topic.find(t.topic); it != published_by_topic.end()) {
       row["published"] = it->second;
       row["complete"] = t.samples == it->second;

@@ -107,6 +107,7 @@ class RecorderImpl final : public Recorder {
       c.reliable = transport::topic_kind(name) != transport::TopicKind::status;
       c.samples = s->samples.load();
       c.lost = s->lost.load();
+      c.repeated = s->repeated.load();
       c.matched_writers = s->reader->matched_writers();
       out.push_back(c);
     }
@@ -138,6 +139,9 @@ class RecorderImpl final : public Recorder {
     std::uint32_t sequence = 0;
     std::atomic<std::uint64_t> samples{0};
     std::atomic<std::uint64_t> lost{0};
+    std::atomic<std::uint64_t> repeated{0};
+    bool data = false;
+    std::map<std::uint64_t, std::uint64_t> next_step;  // data topics: run id -> the step after the newest recorded
   };
 
   bool all_matched(const std::vector<std::string>& topics) const {
@@ -155,6 +159,7 @@ class RecorderImpl final : public Recorder {
     auto s = std::make_unique<Subscription>();
     s->layout = &layout;
     s->reader = participant_->create_reader(topic, layout.type_name);
+    s->data = transport::topic_kind(topic) == transport::TopicKind::data;
     auto schema = schemas_.find(layout.type_name);
     if (schema == schemas_.end())
       schema = schemas_.emplace(layout.type_name, writer_->add_schema(layout.type_name, "omgidl", schema_text(layout))).first;
@@ -177,6 +182,16 @@ class RecorderImpl final : public Recorder {
     std::uint64_t n = 0;
     for (auto& [name, s] : subscriptions_) {
       while (s->reader->take(sample_)) {
+        // A step's first copy only: after a rollback the nodes send the steps since the
+        // checkpoint again (with the same values), and the file stays that of one run.
+        if (s->data) {
+          std::uint64_t& next = s->next_step[sample_.header.run_id];
+          if (sample_.header.step < next) {
+            s->repeated.fetch_add(1, std::memory_order_relaxed);
+            continue;
+          }
+          next = sample_.header.step + 1;
+        }
         writer_->write(s->channel, s->sequence++, now_ns(), simulated_ns(sample_.header.t), sample_.cdr);
         s->samples.fetch_add(1, std::memory_order_relaxed);
         ++n;

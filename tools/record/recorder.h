@@ -63,6 +63,9 @@ struct TopicCount {
   bool reliable = true;           // data and control topics; status is best effort
   std::uint64_t samples = 0;      // recorded
   std::uint64_t lost = 0;         // DDS SAMPLE_LOST count (only a best-effort topic has any)
+  // Data topics: samples of a (run, step) the file holds already, not written again: the
+  // steps a run repeats after a rollback to a checkpoint (docs/faults.md).
+  std::uint64_t repeated = 0;
   int matched_writers = 0;        // at the time of the count
 };
 

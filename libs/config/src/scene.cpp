@@ -32,6 +32,12 @@ const ParticipantSpec* Scene::find_participant(const std::string& name) const {
   return nullptr;
 }
 
+bool Scene::checkpointing() const {
+  for (const auto& p : participants)
+    if (p.restart) return true;
+  return false;
+}
+
 const HostSpec* Scene::find_host(const std::string& name) const {
   for (const auto& h : hosts)
     if (h.name == name) return &h;
@@ -183,8 +189,15 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
     }
   }
   if (auto faults = root.optional_child("faults")) {
-    if (!faults->is_map()) faults->fail("expected a map {redundant_samples: auto|true|false, partition_grace: 2 s}");
-    faults->allow_only({"redundant_samples", "partition_grace"});
+    if (!faults->is_map())
+      faults->fail("expected a map {redundant_samples: auto|true|false, partition_grace: 2 s, restart: never|on_failure, "
+                   "restart_limit: N, checkpoint_every: N}");
+    faults->allow_only({"redundant_samples", "partition_grace", "restart", "restart_limit", "checkpoint_every"});
+    if (faults->has("restart")) scene.faults.restart = faults->choice("restart", {"never", "on_failure"});
+    scene.faults.restart_limit = faults->integer_or("restart_limit", scene.faults.restart_limit);
+    if (scene.faults.restart_limit < 1) faults->child("restart_limit").fail("expected a number of restarts >= 1");
+    scene.faults.checkpoint_every = faults->integer_or("checkpoint_every", scene.faults.checkpoint_every);
+    if (scene.faults.checkpoint_every < 1) faults->child("checkpoint_every").fail("expected a number of macro steps >= 1");
     scene.faults.partition_grace = faults->positive_quantity_or("partition_grace", dim::time, scene.faults.partition_grace);
     if (faults->has("redundant_samples")) scene.faults.redundant_samples = faults->choice("redundant_samples", {"auto", "true", "false"});
   }
@@ -213,7 +226,7 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   for (const std::string& name : participants.keys()) {
     ConfigNode p = participants.child(name);
     if (!valid_name(name)) p.fail("expected an instance name of letters, digits and '_'");
-    p.allow_only({"type", "params", "dds", "host", "solver", "realtime"});
+    p.allow_only({"type", "params", "dds", "host", "solver", "realtime", "restart"});
     ParticipantSpec spec;
     spec.name = name;
     spec.type = p.string("type");
@@ -231,6 +244,12 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
         p.child("host").fail("a participant placed on a host needs the agents' DDS domain: set dds.domain to the "
                              "--domain of the hosts' `mechsim agent` (docs/hosts.md)");
     }
+    spec.restart = (p.has("restart") ? p.choice("restart", {"never", "on_failure"}) : scene.faults.restart) == "on_failure";
+    // Real-time pacing counts from the start command's wall time: a rolled-back run would
+    // be late by the whole repeated stretch.
+    if (spec.restart && scene.mode == "realtime")
+      (p.has("restart") ? p.child("restart") : root.child("faults").child("restart"))
+          .fail("restart: on_failure is built for mode: lockstep only, not for a real-time run (docs/faults.md)");
     spec.process_realtime = scene_process_realtime;
     if (auto rt = p.optional_child("realtime")) {
       rt->allow_only({"priority", "lock_memory", "cpus"});
@@ -241,6 +260,15 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
     spec.key_path = p.path();
     scene.participants.push_back(std::move(spec));
   }
+
+  // Restart with rollback runs on the launcher's host only: an agent cannot restart a node,
+  // and the launcher finds the common checkpoint in its own run folder.
+  if (scene.checkpointing())
+    for (const auto& p : scene.participants)
+      if (!p.host.empty())
+        participants.child(p.name).child("host").fail(
+            "a scene with restart: on_failure runs on the launcher's host only (participant on host '" + p.host +
+            "'); restart with rollback across hosts is not built (docs/faults.md)");
 
   if (auto conns = root.optional_child("connections")) {
     if (!conns->is_sequence()) conns->fail("expected a list of connections");

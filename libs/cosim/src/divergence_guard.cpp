@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 
 namespace mechsim::cosim {
 
@@ -17,6 +18,30 @@ constexpr double kSlowTotal = 4.0;
 
 DivergenceGuard::DivergenceGuard(std::vector<std::string> names, int window, double floor)
     : names_(std::move(names)), window_(window), floor_(floor), tracks_(names_.size()) {}
+
+std::vector<double> DivergenceGuard::save() const {
+  std::vector<double> z{static_cast<double>(in_window_), static_cast<double>(seen_)};
+  for (const Track& t : tracks_)
+    z.insert(z.end(), {t.lo, t.hi, t.last_swing, t.previous, t.previous_diff, static_cast<double>(t.extrema),
+                       static_cast<double>(t.fast_streak), t.block_swing, t.last_block_swing, t.slow_growth,
+                       static_cast<double>(t.block_windows), static_cast<double>(t.block_oscillating),
+                       static_cast<double>(t.slow_streak)});
+  return z;
+}
+
+void DivergenceGuard::restore(std::span<const double> z) {
+  constexpr std::size_t kPerTrack = 13;
+  if (z.size() != 2 + kPerTrack * tracks_.size()) throw std::invalid_argument("divergence guard: saved state has the wrong size");
+  in_window_ = static_cast<int>(z[0]);
+  seen_ = static_cast<long>(z[1]);
+  std::size_t i = 2;
+  for (Track& t : tracks_) {
+    t.lo = z[i++], t.hi = z[i++], t.last_swing = z[i++], t.previous = z[i++], t.previous_diff = z[i++];
+    t.extrema = static_cast<int>(z[i++]), t.fast_streak = static_cast<int>(z[i++]);
+    t.block_swing = z[i++], t.last_block_swing = z[i++], t.slow_growth = z[i++];
+    t.block_windows = static_cast<int>(z[i++]), t.block_oscillating = static_cast<int>(z[i++]), t.slow_streak = static_cast<int>(z[i++]);
+  }
+}
 
 std::optional<std::string> DivergenceGuard::check(std::span<const double> values) {
   const bool first_in_window = in_window_ == 0;

@@ -129,7 +129,7 @@ InprocRunResult run_inproc(const config::Scene& scene, const InprocRunOptions& o
 
   // 2. Start, then watch until every node is done or one fails.
   transport::ControlMessage start{options.run_id, transport::ControlCommand::start, scene.time.end, scene.time.step,
-                                  transport::RunMode::lockstep, scene.rtf, 0, {}};
+                                  transport::RunMode::lockstep, scene.rtf, 0, 0, 0, {}};
   const auto started = Clock::now();
   if (result.reason.empty()) {
     control->write(start);

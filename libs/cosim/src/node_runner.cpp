@@ -9,8 +9,10 @@
 #include <thread>
 
 #include <sched.h>
+#include <unistd.h>
 #include <stdexcept>
 
+#include "mechsim/cosim/checkpoint.h"
 #include "mechsim/cosim/divergence_guard.h"
 #include "mechsim/cosim/node_stepper.h"
 #include "mechsim/cosim/output_log.h"
@@ -82,6 +84,13 @@ void log_event(const models::BlockEvent& ev, const std::unique_ptr<std::FILE, in
     std::fprintf(file.get(), "%s\n", line.c_str());
     std::fflush(file.get());
   }
+}
+
+// Cuts a stdio file to `bytes` and goes on writing at its end (a rollback of the events file).
+void truncate_stdio(std::FILE* f, std::int64_t bytes, const std::string& what) {
+  std::fflush(f);
+  if (::ftruncate(::fileno(f), bytes) != 0 || std::fseek(f, bytes, SEEK_SET) != 0)
+    throw std::runtime_error(what + ": cannot truncate to the checkpoint");
 }
 
 // The node's real-time figures and its lateness histogram (non-empty 1 us bins as
@@ -180,19 +189,33 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
     }
 
     NodeStepper stepper(node, scene.time);
+    // Restarted after a crash: the checkpoint to resume from (docs/faults.md).
+    std::optional<NodeCheckpoint> resumed;
+    if (options.resume_step) {
+      if (options.run_dir.empty()) throw std::runtime_error("--resume needs the run folder (--run-dir)");
+      resumed = read_checkpoint(options.run_dir, node_name, *options.resume_step);
+    }
+    const std::string events_path = options.run_dir + "/" + node_name + ".events.jsonl";
     // Events the block reports (lift-off, landing, ...): JSON lines for the launcher's summary.
     std::unique_ptr<std::FILE, int (*)(std::FILE*)> events_file(nullptr, &std::fclose);
-    if (!options.run_dir.empty())
-      events_file.reset(std::fopen((options.run_dir + "/" + node_name + ".events.jsonl").c_str(), "w"));
+    if (!options.run_dir.empty()) events_file.reset(std::fopen(events_path.c_str(), resumed ? "r+" : "w"));
+    if (resumed && events_file) truncate_stdio(events_file.get(), resumed->events_bytes, events_path);
     std::unique_ptr<OutputLogWriter> log;
     if (!options.run_dir.empty()) {
       std::vector<std::string> columns;
       for (const auto& o : node.block->outputs()) columns.push_back(o.name);
+      const std::string path = options.run_dir + "/" + node_name + ".outputs.bin";
       // Paced: the rows go to the disk from a thread of their own (a write can block for ms).
-      log = std::make_unique<OutputLogWriter>(options.run_dir + "/" + node_name + ".outputs.bin", columns,
-                                              scene.mode == "realtime" ? OutputLogWriter::Mode::background
-                                                                       : OutputLogWriter::Mode::direct);
+      if (resumed)
+        log = std::make_unique<OutputLogWriter>(path, columns, OutputLogWriter::Resume{resumed->output_rows});
+      else
+        log = std::make_unique<OutputLogWriter>(path, columns, scene.mode == "realtime" ? OutputLogWriter::Mode::background
+                                                                                      : OutputLogWriter::Mode::direct);
     }
+    // Restart with rollback: every node checkpoints while some participant may restart.
+    const long checkpoint_every = scene.checkpointing() && !options.run_dir.empty() ? scene.faults.checkpoint_every : 0;
+    const int checkpoints_kept = checkpoints_to_keep(scene.faults.checkpoint_every, plan.nodes().size());
+    std::int32_t generation = options.generation;
 
     // Ready means matched both ways with every partner (see docs/protocol.md: a match seen
     // by only one side can lose the first sample), then wait for the start command.
@@ -204,6 +227,12 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
     };
     bool ready = false, started = false;
     transport::ControlMessage start_message;
+    // A resumed node waits for the resume of its generation instead of the start.
+    const auto awaited = resumed ? transport::ControlCommand::resume : transport::ControlCommand::start;
+    if (resumed) {
+      beat.status().header.step = resumed->stepper.step;
+      beat.status().message = rolled_back_message(resumed->stepper.step, generation);
+    }
     const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
                                              std::chrono::duration<double>(options.start_timeout_s));
     while (!started) {
@@ -216,12 +245,10 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
       while (auto c = control->take()) {
         if (!command_for_this_run(*c)) continue;
         if (c->command == transport::ControlCommand::abort || c->command == transport::ControlCommand::stop) return 3;
-        if (c->command == transport::ControlCommand::start) {
-          started = ready;
-          start_message = *c;
-        }
-        if (c->command == transport::ControlCommand::start && !ready)
-          throw std::runtime_error("start command before this node was matched with its partners");
+        if (c->command != awaited || c->generation != generation) continue;  // e.g. the rollback a resumed node is part of
+        started = ready;
+        start_message = *c;
+        if (!ready) throw std::runtime_error("start command before this node was matched with its partners");
       }
       beat.tick();
       // Not the waitset: a partner that started first may already have sent its step 0,
@@ -231,6 +258,7 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
       // 1 ms sleep is early enough: step 0 is due 50 ms after the start command.
       if (!started) std::this_thread::sleep_for(std::min(beat.until_next(), std::chrono::nanoseconds(1'000'000)));
     }
+    beat.status().message.clear();
     beat.set_state(transport::NodeState::running);
 
     transport::SampleHeader header{options.run_id, 0, scene.time.start};
@@ -240,6 +268,16 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
     // and the redundant copy of a step carries the same values. Checked whenever samples
     // were taken, before they are used.
     std::vector<std::uint64_t> next_step(readers.size(), 0);
+    // After a rollback a partner's stream starts again at the rollback's step (what it sent
+    // before may still be queued ahead of it), and a resumed node takes up a stream
+    // wherever it is: both are in sequence. Every copy of a step carries the same values.
+    std::vector<bool> next_step_known(readers.size(), !resumed);
+    std::vector<std::uint64_t> rollback_steps;
+    if (resumed) rollback_steps.push_back(resumed->stepper.step);
+    auto in_sequence = [&](std::size_t e, std::uint64_t step) {
+      return !next_step_known[e] || step == next_step[e] ||
+             std::find(rollback_steps.begin(), rollback_steps.end(), step) != rollback_steps.end();
+    };
     // The message names the writers the reader is matched with: the intruder among them.
     auto foreign = [&](const transport::SampleReader* r, const std::string& topic, const std::string& from, const std::string& what) {
       std::string ids;
@@ -312,9 +350,10 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
         while (readers[e]->take(h, received)) {
           took = true;
           if (h.run_id != options.run_id) continue;
-          if (h.step != next_step[e])
+          if (!in_sequence(e, h.step))
             foreign(readers[e].get(), edge.topic, edge.from, "step " + std::to_string(h.step) + " arrived where step " + std::to_string(next_step[e]) + " was due");
           next_step[e] = h.step + 1;
+          next_step_known[e] = true;
           check_plausible(e, h, received);
           if (h.step + 2 >= stepper.step() && !stepper.channel(e).add(h.step, received))
             foreign(readers[e].get(), edge.topic, edge.from, "two different samples for step " + std::to_string(h.step));
@@ -346,11 +385,13 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
       cut_writer->write({options.run_id, stepper.step(), stepper.time()}, prediction);
       if (twin_cut_writer) twin_cut_writer->write({options.run_id, stepper.step(), stepper.time()}, prediction);
     };
+    std::optional<transport::ControlMessage> pending_rollback;
     auto check_control = [&] {
-      while (auto c = control->take())
-        if (command_for_this_run(*c) &&
-            (c->command == transport::ControlCommand::abort || c->command == transport::ControlCommand::stop))
-          return true;
+      while (auto c = control->take()) {
+        if (!command_for_this_run(*c)) continue;
+        if (c->command == transport::ControlCommand::abort || c->command == transport::ControlCommand::stop) return true;
+        if (c->command == transport::ControlCommand::rollback && c->generation > generation) pending_rollback = *c;
+      }
       return false;
     };
     std::vector<std::string> output_names;
@@ -405,6 +446,77 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
     };
 
     bool initialised = false;
+    // --- restart with rollback (checkpoint.h, docs/faults.md) ---
+    bool announce_step = false;  // after a resume: the first step taken goes to the launcher at once
+    // After a resume the partners of a restarted node hold while its dead writer lingers
+    // (its lease, under kForeignWriterGrace): a wait that long is no partition.
+    Clock::time_point partition_exempt_until{};
+    auto write_node_checkpoint = [&] {
+      log->flush();
+      std::int64_t events_bytes = 0;
+      if (events_file) {
+        std::fflush(events_file.get());
+        events_bytes = std::ftell(events_file.get());
+      }
+      write_checkpoint(options.run_dir, node_name, {stepper.snapshot(), guard.save(), log->rows(), events_bytes}, checkpoints_kept);
+    };
+    // Back to a checkpoint's step: the outputs written after it are cut off, so the run
+    // folder ends as an undisturbed run's.
+    auto apply_checkpoint = [&](const NodeCheckpoint& c) {
+      if (log) log->truncate_rows(c.output_rows);
+      if (events_file) truncate_stdio(events_file.get(), c.events_bytes, events_path);
+      stepper.restore(c.stepper, values);
+      guard.restore(c.guard);
+      initialised = true;
+      if (std::find(rollback_steps.begin(), rollback_steps.end(), c.stepper.step) == rollback_steps.end())
+        rollback_steps.push_back(c.stepper.step);
+      header.step = stepper.step();
+      header.t = stepper.time();
+      beat.status().header.step = header.step;
+      beat.status().header.t = header.t;
+    };
+    // The restored step's samples once more: the partners rolled back as well and need them.
+    auto republish = [&] {
+      writer->write(header, values);
+      if (twin_writer) twin_writer->write(header, values);
+    };
+    // Waits (heartbeats only, no sample taken) for the resume of `generation`; false when
+    // the run is stopped meanwhile.
+    auto await_resume = [&] {
+      for (;;) {
+        if (stop_requested()) return false;
+        while (auto c = control->take()) {
+          if (!command_for_this_run(*c)) continue;
+          if (c->command == transport::ControlCommand::abort || c->command == transport::ControlCommand::stop) return false;
+          if (c->command == transport::ControlCommand::resume && c->generation == generation) return true;
+          if (c->command == transport::ControlCommand::rollback && c->generation > generation)
+            throw std::runtime_error("a second rollback (generation " + std::to_string(c->generation) + ") before the run resumed");
+        }
+        beat.tick();
+        std::this_thread::sleep_for(std::min(beat.until_next(), std::chrono::nanoseconds(1'000'000)));
+      }
+    };
+    auto roll_back = [&](const transport::ControlMessage& command) {
+      apply_checkpoint(read_checkpoint(options.run_dir, node_name, command.step));
+      generation = command.generation;
+      std::printf("rollback: to step %llu (generation %d)\n", static_cast<unsigned long long>(command.step), generation);
+      beat.status().message = rolled_back_message(command.step, generation);
+      beat.set_state(transport::NodeState::ready);
+      if (!await_resume()) return false;
+      beat.status().message.clear();
+      beat.set_state(transport::NodeState::running);
+      republish();
+      announce_step = true;
+      partition_exempt_until = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(kForeignWriterGrace));
+      return true;
+    };
+    if (resumed) {
+      apply_checkpoint(*resumed);
+      std::printf("resumed: from step %llu (generation %d)\n", static_cast<unsigned long long>(header.step), generation);
+      republish();
+      announce_step = true;
+      partition_exempt_until = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(kForeignWriterGrace));
+    }
     bool has_gauss_seidel_input = false;
     for (const auto& edge : node.inputs) has_gauss_seidel_input = has_gauss_seidel_input || edge.order == config::EdgeOrder::gauss_seidel;
     // Low-latency wait: poll with sched_yield for a bounded time before blocking (waking a
@@ -424,7 +536,7 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
     auto waiting_since = Clock::now();
     std::uint64_t waiting_step = UINT64_MAX;
     auto check_partition = [&] {
-      if (stepper.step() != waiting_step || !initialised) {
+      if (stepper.step() != waiting_step || !initialised || Clock::now() < partition_exempt_until) {
         waiting_step = initialised ? stepper.step() : UINT64_MAX;
         waiting_since = Clock::now();
         return;
@@ -452,9 +564,11 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
       while (initialised && stepper.can_step() && !second_writer_since) {  // a drain below may start a hold
         stepper.step(values);
         publish();
+        if (std::exchange(announce_step, false)) beat.send();
         stepper.take_events();  // the block's own event log below says what they meant
         for (const auto& ev : node.block->take_event_log()) log_event(ev, events_file);
         if (stepper.finished()) break;
+        if (checkpoint_every > 0 && stepper.step() % static_cast<std::uint64_t>(checkpoint_every) == 0) write_node_checkpoint();
         drain();
         predict_if_due();
         copy_stats(stepper.solver_stats(), beat.status());  // statistics on every heartbeat
@@ -462,6 +576,11 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
       }
       if (stepper.finished()) break;
       if (stop_requested() || check_control()) return 3;
+      if (pending_rollback) {
+        const transport::ControlMessage command = *std::exchange(pending_rollback, std::nullopt);
+        if (!roll_back(command)) return 3;
+        continue;
+      }
       if (second_writer_since) waiting_since = Clock::now();  // a hold is not a partition
       check_partition();
       copy_stats(stepper.solver_stats(), beat.status());

@@ -189,4 +189,51 @@ void NodeStepper::set_coupled_state(std::span<const double> z) {
   if (cut_side_) assumed_torque_ = z[i++];
 }
 
+StepperSnapshot NodeStepper::snapshot() const {
+  if (!integrator_) throw std::logic_error("snapshot before initialise");
+  StepperSnapshot s;
+  s.step = k_;
+  const auto x = integrator_->state();
+  s.state.assign(x.begin(), x.end());
+  s.discrete = node_.block->save_discrete_state();
+  s.outputs = y_;
+  for (const auto& c : channels_) {
+    auto& held = s.channels.emplace_back();
+    for (const auto& [step, values] : c.held_samples())
+      if (step < k_) held.emplace_back(step, values);
+  }
+  s.assumed_torque = assumed_torque_;
+  return s;
+}
+
+void NodeStepper::restore(const StepperSnapshot& s, std::vector<double>& topic_values) {
+  const std::string who = "restore of node '" + node_.name() + "'";
+  if (s.state.size() != x_.size() || s.outputs.size() != y_.size() || s.channels.size() != channels_.size())
+    throw std::invalid_argument(who + ": the checkpoint does not fit this node (state, outputs or channels differ)");
+  if (s.step > n_steps_) throw std::invalid_argument(who + ": checkpoint step " + std::to_string(s.step) + " is past the run's end");
+  if (!integrator_) {
+    integrator_ = std::make_unique<solve::BlockIntegrator>(*node_.block, solver_options(node_.spec->solver), t0_, x_);
+    // The t0 sample is behind a restored node, as behind one that initialised (it is
+    // overwritten by the restored discrete state below).
+    if (node_.block->sample_time() > 0)
+      integrator_->advance_to(t0_, [this](double, std::span<double> u) { std::copy(defaults_.begin(), defaults_.end(), u.begin()); });
+  }
+  const double t = t0_ + static_cast<double>(s.step) * h_;
+  // A new time resumes the sample grid after t: the sample at t was taken before the checkpoint.
+  integrator_->reset_state(t, s.state);
+  if (!s.discrete.empty() || !node_.block->save_discrete_state().empty()) node_.block->restore_discrete_state(s.discrete);
+  for (std::size_t e = 0; e < channels_.size(); ++e) {
+    auto& held = channels_[e].held_samples();
+    held.clear();
+    for (const auto& [step, values] : s.channels[e]) held.emplace(step, values);
+  }
+  y_ = s.outputs;
+  k_ = s.step;
+  assumed_torque_ = s.assumed_torque;
+  has_own_prediction_ = false;
+  partner_predictions_.clear();
+  initialised_ = true;
+  publishable(topic_values);
+}
+
 }  // namespace mechsim::cosim

@@ -2,6 +2,7 @@
 
 #include <pthread.h>
 #include <sched.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -10,6 +11,7 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 namespace mechsim::cosim {
 
@@ -24,11 +26,48 @@ OutputLogWriter::OutputLogWriter(const std::string& path, const std::vector<std:
   std::string header = std::string(kMagic) + "\nt";
   for (const auto& c : columns) header += "," + c;
   header += "\n";
+  header_bytes_ = static_cast<long>(header.size());
   std::fwrite(header.data(), 1, header.size(), file_);
   if (mode_ == Mode::background) {
     ring_.assign(kRingRows * width_, 0.0);
     writer_ = std::thread([this] { writer_loop(); });
   }
+}
+
+OutputLogWriter::OutputLogWriter(const std::string& path, const std::vector<std::string>& columns, Resume resume)
+    : path_(path), width_(columns.size() + 1), mode_(Mode::direct) {
+  std::string header = std::string(kMagic) + "\nt";
+  for (const auto& c : columns) header += "," + c;
+  header += "\n";
+  header_bytes_ = static_cast<long>(header.size());
+  file_ = std::fopen(path.c_str(), "r+b");
+  if (!file_) throw std::runtime_error(path + ": cannot reopen to resume: " + std::strerror(errno));
+  try {
+    std::string found(header.size(), '\0');
+    if (std::fread(found.data(), 1, found.size(), file_) != found.size() || found != header)
+      throw std::runtime_error(path + ": not this node's output log (its header differs), cannot resume it");
+    truncate_rows(resume.rows);
+  } catch (...) {
+    std::fclose(std::exchange(file_, nullptr));
+    throw;
+  }
+}
+
+void OutputLogWriter::flush() {
+  if (mode_ != Mode::direct) throw std::logic_error(path_ + ": flush of a background output log");
+  if (std::fflush(file_) != 0) throw std::runtime_error(path_ + ": write failed: " + std::strerror(errno));
+}
+
+void OutputLogWriter::truncate_rows(std::uint64_t rows) {
+  if (mode_ != Mode::direct) throw std::logic_error(path_ + ": truncate of a background output log");
+  flush();
+  const long size = header_bytes_ + static_cast<long>(rows * width_ * sizeof(double));
+  std::fseek(file_, 0, SEEK_END);
+  if (std::ftell(file_) < size)
+    throw std::runtime_error(path_ + ": holds fewer than the " + std::to_string(rows) + " rows of the checkpoint");
+  if (::ftruncate(::fileno(file_), size) != 0 || std::fseek(file_, size, SEEK_SET) != 0)
+    throw std::runtime_error(path_ + ": cannot truncate to the checkpoint: " + std::strerror(errno));
+  rows_ = rows;
 }
 
 OutputLogWriter::~OutputLogWriter() {
@@ -40,6 +79,7 @@ OutputLogWriter::~OutputLogWriter() {
 }
 
 void OutputLogWriter::append(double t, std::span<const double> values) {
+  ++rows_;
   if (mode_ == Mode::direct) {
     std::fwrite(&t, sizeof t, 1, file_);
     std::fwrite(values.data(), sizeof(double), values.size(), file_);

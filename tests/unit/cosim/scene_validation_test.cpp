@@ -145,3 +145,34 @@ TEST(SceneValidation, HostsAndPlacement) {
 
 }  // namespace
 }  // namespace mechsim::cosim
+
+namespace mechsim::cosim {
+namespace {
+
+// Restart with rollback (docs/faults.md): the keys, and what it is not built for.
+TEST(SceneValidation, RestartKeys) {
+  const std::string on = "mode: lockstep\nfaults: {restart: on_failure, restart_limit: 2, checkpoint_every: 250}";
+  const config::Scene scene = config::load_scene(write_scene(cam_press_with("mode: lockstep", on)));
+  EXPECT_TRUE(scene.checkpointing());
+  EXPECT_EQ(scene.faults.restart_limit, 2);
+  EXPECT_EQ(scene.faults.checkpoint_every, 250);
+  EXPECT_TRUE(scene.find_participant("cam")->restart);
+  // A participant's own restart: overrides the scene's.
+  const config::Scene one = config::load_scene(write_scene(cam_press_with("    type: follower", "    type: follower\n    restart: on_failure")));
+  EXPECT_TRUE(one.checkpointing());
+  EXPECT_TRUE(one.find_participant("follower")->restart);
+  EXPECT_FALSE(one.find_participant("cam")->restart);
+  EXPECT_FALSE(config::load_scene(testing::shipped_scene("cam_press.yaml")).checkpointing());
+  expect_refused(cam_press_with("mode: lockstep", "mode: lockstep\nfaults: {restart: always}"), "faults.restart", "on_failure");
+  expect_refused(cam_press_with("mode: lockstep", "mode: lockstep\nfaults: {restart_limit: 0}"), "faults.restart_limit", ">= 1");
+  expect_refused(cam_press_with("mode: lockstep", "mode: lockstep\nfaults: {checkpoint_every: 0}"), "faults.checkpoint_every", ">= 1");
+  expect_refused(cam_press_with("mode: lockstep", "mode: realtime\nfaults: {restart: on_failure}"), "faults.restart", "lockstep only");
+  // Any participant on another host: the launcher could not find its checkpoints.
+  std::string hosts = cam_press_with("mode: lockstep", "mode: lockstep\ndds: {domain: 5}\nhosts: {b: {address: 10.0.0.2}}\n"
+                                                       "faults: {restart: on_failure}");
+  hosts.replace(hosts.find("    type: follower"), 18, "    type: follower\n    host: b\n    restart: never");
+  expect_refused(hosts, "participants.follower.host", "launcher's host only");
+}
+
+}  // namespace
+}  // namespace mechsim::cosim

@@ -83,7 +83,7 @@ TEST_F(RawCdr, EveryDataTypeDecodesToTheValuesTheTypedWriterWrote) {
 
 TEST_F(RawCdr, ControlAndStatusDecodeToWhatWasWritten) {
   auto control = typed_->create_control_writer();
-  control->write({77, transport::ControlCommand::start, 2.5, 1e-3, transport::RunMode::realtime, 0.5, 123456789012345, {}});
+  control->write({77, transport::ControlCommand::start, 2.5, 1e-3, transport::RunMode::realtime, 0.5, 123456789012345, 0, 0, {}});
   auto control_reader = raw_->create_reader(transport::kControlTopic, "Control");  // late joiner: transient local
   transport::RawSample s;
   ASSERT_TRUE(wait_until(*raw_, [&] { return control_reader->take(s); }));

@@ -59,7 +59,7 @@ TEST_F(CycloneLoopback, DataSampleArrivesIntact) {
 TEST_F(CycloneLoopback, ControlIsDurableForLateJoinersAndStatusRoundTrips) {
   auto launcher = create_participant("cyclone", test_domain());
   auto control = launcher->create_control_writer();
-  control->write({99, ControlCommand::start, 2.0, 1e-3, RunMode::lockstep, 1.0, 0, {}});
+  control->write({99, ControlCommand::start, 2.0, 1e-3, RunMode::lockstep, 1.0, 0, 0, 0, {}});
   // A node that joins after the command still gets it (TRANSIENT_LOCAL).
   auto node = create_participant("cyclone", test_domain());
   auto control_reader = node->create_control_reader();

@@ -194,6 +194,8 @@ class CycloneControlWriter final : public ControlWriter {
     c.mode = static_cast<int32_t>(m.mode);
     c.rtf = m.rtf;
     c.start_wall_ns = m.start_wall_ns;
+    c.header.step = m.step;
+    c.generation = m.generation;
     dds_return_t rc = dds_write(writer_, &c);
     if (rc != DDS_RETCODE_OK) fail("write control", rc);
   }
@@ -217,7 +219,7 @@ class CycloneControlReader final : public ControlReader {
     dds_sample_info_t info;
     if (!take_one(reader_, &c, &info)) return std::nullopt;
     ControlMessage m{c.header.run_id, static_cast<ControlCommand>(c.command), c.end_time,
-                     c.macro_step, static_cast<RunMode>(c.mode), c.rtf, c.start_wall_ns, {}};
+                     c.macro_step, static_cast<RunMode>(c.mode), c.rtf, c.start_wall_ns, c.header.step, c.generation, {}};
     // The sender: its matched-publication data, while it is matched (it is, as it just wrote).
     if (dds_builtintopic_endpoint_t* w = dds_get_matched_publication_data(reader_, info.publication_handle)) {
       m.writer = guid_text(w->key.v);

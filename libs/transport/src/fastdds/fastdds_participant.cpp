@@ -313,6 +313,8 @@ class FastControlWriter final : public ControlWriter, Endpoint {
     c.mode(static_cast<std::int32_t>(m.mode));
     c.rtf(m.rtf);
     c.start_wall_ns(m.start_wall_ns);
+    c.header().step(m.step);
+    c.generation(m.generation);
     if (!writer_->write(&c)) fail("write control");
   }
   int matched_readers() const override { return publication_matched(writer_); }
@@ -340,6 +342,8 @@ class FastControlReader final : public ControlReader, Endpoint {
     m.mode = static_cast<RunMode>(c.mode());
     m.rtf = c.rtf();
     m.start_wall_ns = c.start_wall_ns();
+    m.step = c.header().step();
+    m.generation = c.generation();
     return m;
   }
 

@@ -63,6 +63,7 @@ struct ParticipantSpec {
   std::string host;    // a name of Scene::hosts; "" = where the launcher runs
   SolverSpec solver;
   ProcessRealtimeSpec process_realtime;  // the scene's realtime settings with this participant's over them
+  bool restart = false;  // restarted after a crash (faults.restart, or the participant's own restart:)
   ConfigNode params;   // type-specific, validated by the node type
   std::string key_path;  // "participants.cam" for error messages
 };
@@ -126,6 +127,13 @@ struct FaultsSpec {
   // A partner silent for longer than this (a cut link, an unreachable host) ends the run,
   // naming it; a shorter cut only stalls the run, which then resumes unchanged.
   double partition_grace = 2.0;  // s
+  // Restart with rollback: "on_failure" restarts a participant whose process died, and every
+  // node rolls back to the last checkpoint they all hold (a participant's own `restart:`
+  // overrides this). Nodes checkpoint every `checkpoint_every` steps while any participant
+  // may restart; more than `restart_limit` restarts of one participant end the run.
+  std::string restart = "never";  // never | on_failure
+  long restart_limit = 3;
+  long checkpoint_every = 1000;   // macro steps
   std::string key_path = "faults";
 };
 
@@ -162,6 +170,8 @@ struct Scene {
   ConfigNode root;  // the whole document (with overrides applied)
 
   const ParticipantSpec* find_participant(const std::string& name) const;
+  // True when some participant restarts after a crash: then every node checkpoints.
+  bool checkpointing() const;
   const HostSpec* find_host(const std::string& name) const;
 };
 

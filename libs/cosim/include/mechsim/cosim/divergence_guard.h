@@ -26,6 +26,10 @@ class DivergenceGuard {
   explicit DivergenceGuard(std::vector<std::string> names, int window = 20, double floor = 1e-12);
   // Call once per published step; returns why the run diverged, if it did.
   std::optional<std::string> check(std::span<const double> values);
+  // Its whole history as numbers, for a node's checkpoint (checkpoint.h): a rolled-back
+  // run judges divergence exactly as an undisturbed one.
+  std::vector<double> save() const;
+  void restore(std::span<const double> saved);  // throws std::invalid_argument on a size mismatch
 
  private:
   struct Track {

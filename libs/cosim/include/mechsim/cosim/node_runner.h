@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "mechsim/cosim/scene_plan.h"
@@ -20,6 +21,10 @@ struct NodeRunOptions {
   double heartbeat_s = 0.1;         // status period while waiting or stepping
   double start_timeout_s = 120.0;   // give up when no start command arrives
   const std::atomic<bool>* stop_requested = nullptr;  // set by the node's signal handler
+  // Restart with rollback (docs/faults.md): a node started again after a crash resumes from
+  // its checkpoint of this step, in this generation, once the launcher sends resume.
+  std::optional<std::uint64_t> resume_step;
+  std::int32_t generation = 0;
 };
 
 // Runs the node to the end of the scene. Returns the process exit code: 0 done, 1 failed,

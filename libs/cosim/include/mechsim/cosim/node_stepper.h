@@ -20,6 +20,20 @@ namespace mechsim::cosim {
 
 solve::SolverOptions solver_options(const config::SolverSpec& spec);
 
+// A node's complete state at a step boundary, with the step keys of its channels' samples:
+// what a checkpoint stores (checkpoint.h) so that a node, restored in this process or in a
+// new one, goes on exactly as it would have.
+struct StepperSnapshot {
+  std::uint64_t step = 0;
+  std::vector<double> state;     // the integrator's (it restarts at every macro step)
+  std::vector<double> discrete;  // the block's sampled / held / mode state
+  std::vector<double> outputs;   // all block outputs at `step`
+  // Per channel, the samples of steps before `step` it still needs (the partners publish
+  // `step` and later again after a rollback).
+  std::vector<std::vector<std::pair<std::uint64_t, std::vector<double>>>> channels;
+  double assumed_torque = 0.0;   // interface-Jacobian cut: what the next prediction assumes
+};
+
 class NodeStepper {
  public:
   // `node` must outlive the stepper (it owns the block).
@@ -60,6 +74,13 @@ class NodeStepper {
   // std::invalid_argument on a size mismatch.
   std::vector<double> coupled_state() const;
   void set_coupled_state(std::span<const double> z);
+
+  // The state at the current step boundary (after initialise() or step(), before the next
+  // prediction), and its restoration: in a stepper of the same node, initialised or not.
+  // restore() fills `topic_values` with the restored step's published fields (sent again
+  // on resume) and drops every partner prediction; the next prediction is made afresh.
+  StepperSnapshot snapshot() const;
+  void restore(const StepperSnapshot& s, std::vector<double>& topic_values);
 
  private:
   void inputs_at(double t, std::uint64_t k, std::span<double> u);

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <atomic>
+#include <cstdint>
 #include <cstdio>
 #include <thread>
 #include <span>
@@ -23,8 +24,20 @@ class OutputLogWriter {
   // (a write() can block for milliseconds while the file system commits; seen here).
   enum class Mode { direct, background };
   OutputLogWriter(const std::string& path, const std::vector<std::string>& columns, Mode mode = Mode::direct);
+  // A node resumed from a checkpoint (checkpoint.h): reopens the existing log and keeps its
+  // first `rows` rows, dropping what was written after the checkpoint. Direct mode only.
+  struct Resume {
+    std::uint64_t rows;
+  };
+  OutputLogWriter(const std::string& path, const std::vector<std::string>& columns, Resume resume);
   ~OutputLogWriter();
   void append(double t, std::span<const double> values);
+  // Rows appended so far (resumed rows included).
+  std::uint64_t rows() const { return rows_; }
+  // Direct mode: writes the buffered rows to the file (a checkpoint needs them there).
+  void flush();
+  // Direct mode: drops every row after the first `rows` (a rollback to a checkpoint).
+  void truncate_rows(std::uint64_t rows);
   // Writes what is left and closes the file (joins the writer thread). Throws on a write error.
   void close();
   // Appends that found the ring full and waited for the writer thread (background mode).
@@ -37,6 +50,8 @@ class OutputLogWriter {
   std::string path_;
   std::size_t width_;
   Mode mode_;
+  long header_bytes_ = 0;
+  std::uint64_t rows_ = 0;
   // background mode: single producer (append), single consumer (the writer thread)
   static constexpr std::size_t kRingRows = 16384;
   std::vector<double> ring_;

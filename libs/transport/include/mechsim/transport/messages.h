@@ -15,7 +15,9 @@ struct SampleHeader {
   double t = 0.0;
 };
 
-enum class ControlCommand : std::int32_t { none = 0, start = 1, stop = 2, abort = 3 };
+// rollback: return to the checkpoint of `step` and wait; resume: go on from there (both
+// carry the rollback's generation; docs/faults.md, 'Restart with rollback').
+enum class ControlCommand : std::int32_t { none = 0, start = 1, stop = 2, abort = 3, rollback = 4, resume = 5 };
 enum class RunMode : std::int32_t { lockstep = 0, realtime = 1 };
 
 struct ControlMessage {
@@ -26,6 +28,8 @@ struct ControlMessage {
   RunMode mode = RunMode::lockstep;
   double rtf = 1.0;
   std::int64_t start_wall_ns = 0;  // realtime mode: Unix time of step 0 (ns)
+  std::uint64_t step = 0;          // rollback, resume: the checkpoint's step
+  std::int32_t generation = 0;     // 0 until the first rollback, then 1, 2, ...
   // Not on the wire: the GUID of the writer that sent it (guid_text), filled by the reader
   // so a node can refuse commands that are not the launcher's; "" where none is known.
   std::string writer;
