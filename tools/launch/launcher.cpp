@@ -30,6 +30,7 @@
 #include "node_processes.h"
 #include "replay_input.h"
 #include "run_recording.h"
+#include "run_security.h"
 #include "paths.h"
 #include "run_report.h"
 #include "signal_compare.h"
@@ -239,7 +240,7 @@ RunOutcome Run::run_nodes() {
       args.push_back("--replay");
       args.push_back(it->second);
     }
-    processes_.start(node.name(), exe, args, run_dir_ + "/" + node.name() + ".log");
+    processes_.start(node.name(), exe, args, run_dir_ + "/" + node.name() + ".log", node_security_environment(scene_, node.name()));
     watch_[node.name()] = {};
   }
 
@@ -442,6 +443,7 @@ json Run::summarise(const RunOutcome& out) {
   s["run_dir"] = run_dir_;
   s["domain_id"] = domain_;
   s["dds_vendor"] = scene_.vendor;  // the launcher's own participant
+  if (!scene_.security_dir.empty()) s["dds_security"] = scene_.security_dir;
   s["mode"] = scene_.mode;
   s["redundant_samples"] = scene_.faults.redundant();
   s["status"] = out.ok ? "ok" : "failed";
@@ -514,6 +516,11 @@ int Run::execute() {
                          "(docs/realtime.md, 'Rights'); nothing was started\n");
     return 2;
   }
+  // DDS security (docs/security.md): every identity the run needs, before anything starts.
+  if (const auto problems = security_problems(scene_); !problems.empty()) {
+    for (const auto& why : problems) std::fprintf(stderr, "mechsim launch: %s\n", why.c_str());
+    return 2;
+  }
   std::random_device rd;
   run_id_ = (static_cast<std::uint64_t>(rd()) << 32) ^ rd() ^ static_cast<std::uint64_t>(::getpid());
   run_dir_ = (fs::path(opt_.runs_dir) / (scene_.name + "-" + hex_id(run_id_).substr(8))).string();
@@ -545,6 +552,10 @@ int Run::execute() {
   } else {
     configure_dds_environment();
   }
+  configure_security_environment(scene_);
+  if (!scene_.security_dir.empty())
+    std::fprintf(stderr, "mechsim: DDS security: %s (authentication, access control, encryption; docs/security.md)\n",
+                 scene_.security_dir.c_str());
   participant_ = transport::create_participant(scene_.vendor, domain_);
   control_ = participant_->create_control_writer();
   status_ = participant_->create_status_reader();

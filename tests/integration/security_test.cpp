@@ -1,0 +1,255 @@
+// DDS Security (docs/security.md), with real processes and both vendors' built-in plugins:
+//  - a secured run gives node outputs byte-identical to an unsecured one (Cyclone DDS,
+//    Fast DDS; mixed: see MixedLayout);
+//  - participants without a valid identity (an unsecured one, and one whose certificate
+//    another CA signed) discover nothing of a secured run and nothing they write is used:
+//    the run ends "ok" and byte-identical, where the same forgery fails an unsecured run
+//    (foreign_writer_test);
+//  - a participant with a valid certificate is refused a topic its permissions lack, for
+//    writing and for reading;
+//  - a scene whose security folder is missing, incomplete or has a readable key is refused
+//    before anything starts, naming the file.
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <thread>
+
+#include "domain_lock.h"
+#include "mechsim/transport/backends.h"
+#include "mechsim/transport/security.h"
+#include "run_fixture.h"
+
+namespace mechsim::testing {
+namespace {
+
+namespace fs = std::filesystem;
+
+bool compiled_in(const std::string& vendor) {
+  const auto v = transport::available_vendors();
+  return std::find(v.begin(), v.end(), vendor) != v.end();
+}
+
+const std::string kScene = scene_path("nc_slide_loop.yaml");
+
+// Two security folders for nc_slide_loop, made once for the suite: `sec` (the run's) and
+// `other` (the same identities under another CA: valid certificates nobody in the run trusts).
+class Security : public RunFolderTest {
+ protected:
+  static void SetUpTestSuite() {
+    folders_ = fs::temp_directory_path() / ("mechsim-security-" + std::to_string(::getpid()));
+    fs::remove_all(folders_);
+    fs::create_directories(folders_);
+    for (const char* name : {"sec", "other"}) {
+      const CommandResult r = run({kMechsim, "security", "init", (folders_ / name).string(), kScene},
+                                  (folders_ / (std::string(name) + ".log")).string(), 60);
+      ASSERT_EQ(r.exit_code, 0) << r.output;
+    }
+  }
+  static void TearDownTestSuite() { fs::remove_all(folders_); }
+  void SetUp() override {
+    RunFolderTest::SetUp();
+    // This process's own participants: the launcher's loopback profiles.
+    ::setenv("CYCLONEDDS_URI", "file://" MECHSIM_SOURCE_DIR "/config/dds/cyclonedds-loopback.xml", 1);
+    ::setenv("FASTRTPS_DEFAULT_PROFILES_FILE", MECHSIM_SOURCE_DIR "/config/dds/fastdds-shm.xml", 1);
+  }
+  static std::string sec() { return (folders_ / "sec").string(); }
+  static std::string other() { return (folders_ / "other").string(); }
+  std::vector<std::string> run_args(const std::string& tag, const std::string& layout, bool secured,
+                                    std::vector<std::string> extra = {}) {
+    std::vector<std::string> a{"--dds", layout};
+    if (secured) a.insert(a.end(), {"--set", "dds.security=" + sec()});
+    a.insert(a.end(), extra.begin(), extra.end());
+    return launch_args(kScene, tag, a);
+  }
+  void expect_identical_outputs(const std::string& a, const std::string& b) {
+    for (const char* node : {"servo", "tacho", "slide"}) {
+      const std::string file = std::string(node) + ".outputs.bin";
+      const std::string first = slurp((run_folder(a) / file).string());
+      EXPECT_GT(first.size(), 1000u) << file;
+      EXPECT_TRUE(first == slurp((run_folder(b) / file).string())) << file << " differs between " << a << " and " << b;
+    }
+  }
+  static fs::path folders_;
+};
+fs::path Security::folders_;
+
+// ---------------------------------------------------------------------------------------
+// Same numbers secured and not.
+
+class SecuredRun : public Security, public ::testing::WithParamInterface<std::string> {};
+
+TEST_P(SecuredRun, NodeOutputsAreByteIdenticalToAnUnsecuredRun) {
+  const std::string layout = GetParam();
+  if (!compiled_in(layout)) GTEST_SKIP() << layout << " is not in this build";
+  const CommandResult plain = run(run_args("plain", layout, false), log("plain"));
+  ASSERT_EQ(plain.exit_code, 0) << plain.output;
+  // Secured, with the launcher's recorder on (it uses the launcher's identity).
+  const std::vector<std::string> record =
+      compiled_in("cyclone") ? std::vector<std::string>{"--set", "record=true"} : std::vector<std::string>{};
+  const CommandResult secured = run(run_args("secured", layout, true, record), log("secured"));
+  ASSERT_EQ(secured.exit_code, 0) << secured.output;
+  EXPECT_NE(secured.output.find("DDS security: " + sec()), std::string::npos) << secured.output;
+  expect_identical_outputs("plain", "secured");
+  if (!record.empty()) {
+    const auto rec = summary("secured")["recording"];
+    EXPECT_TRUE(rec["complete"].get<bool>()) << rec.dump(2);
+  }
+  EXPECT_EQ(summary("secured")["dds_security"], sec());
+  EXPECT_TRUE(summary("plain")["dds_security"].is_null());
+}
+
+INSTANTIATE_TEST_SUITE_P(Vendors, SecuredRun, ::testing::Values("cyclone", "fastdds"),
+                         [](const auto& info) { return info.param; });
+
+// ---------------------------------------------------------------------------------------
+// Outsiders.
+
+// Reads servo/command and writes forged samples on it with `participant` for as long as
+// the launcher `pid` runs; returns what it saw.
+struct OutsiderReport {
+  int samples_read = 0;
+  int max_matched_writers = 0, max_matched_readers = 0;
+  int forged_written = 0;
+  double seconds_alongside = 0;
+};
+
+OutsiderReport act_as_outsider(transport::Participant& participant, pid_t launcher, std::atomic<bool>& launcher_done) {
+  OutsiderReport report;
+  const transport::TopicType* type = transport::find_topic_type("ServoCommand");
+  auto reader = participant.create_reader("servo/command", *type);
+  auto writer = participant.create_writer("servo/command", *type);
+  std::vector<double> forged(type->fields.size(), 1e6);
+  transport::SampleHeader h;
+  std::vector<double> values;
+  const auto start = std::chrono::steady_clock::now();
+  for (std::uint64_t k = 0; !launcher_done.load(); ++k) {
+    while (reader->take(h, values)) ++report.samples_read;
+    report.max_matched_writers = std::max(report.max_matched_writers, reader->matched_writers());
+    report.max_matched_readers = std::max(report.max_matched_readers, writer->matched_readers());
+    writer->write({0, k, 0.0}, forged);
+    ++report.forged_written;
+    participant.wait(std::chrono::milliseconds(5));
+  }
+  report.seconds_alongside = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  (void)launcher;
+  return report;
+}
+
+TEST_F(Security, ParticipantsWithoutAValidIdentitySeeNothingAndChangeNothing) {
+  if (!compiled_in("cyclone")) GTEST_SKIP() << "the outsiders are Cyclone DDS participants";
+  // 1 s simulated (40 000 steps): some seconds of run for the outsiders to try.
+  const CommandResult plain = run(run_args("plain", "cyclone", false, {"--end", "1 s"}), log("plain"));
+  ASSERT_EQ(plain.exit_code, 0) << plain.output;
+
+  launch::DomainLock domain = launch::DomainLock::acquire();
+  // Another CA's "servo": a well-formed identity the run's CA did not sign.
+  auto foreign = transport::create_participant("cyclone", domain.domain_id(), transport::SecurityIdentity{other(), "servo"});
+  const pid_t launcher = spawn(run_args("secured", "cyclone", true, {"--end", "1 s", "--set", "dds.domain=" + std::to_string(domain.domain_id())}),
+                               log("secured"));
+  std::atomic<bool> done{false};
+  OutsiderReport seen;
+  std::thread outsider([&] { seen = act_as_outsider(*foreign, launcher, done); });
+  const CommandResult secured = wait_for(launcher, log("secured"), 120);
+  done = true;
+  outsider.join();
+  ASSERT_EQ(secured.exit_code, 0) << secured.output;
+  EXPECT_GT(seen.seconds_alongside, 1.0) << "the outsider must have been there while the run went on";
+  EXPECT_GT(seen.forged_written, 50);
+  EXPECT_EQ(seen.samples_read, 0);
+  EXPECT_EQ(seen.max_matched_writers, 0);
+  EXPECT_EQ(seen.max_matched_readers, 0);
+  EXPECT_EQ(secured.output.find("foreign"), std::string::npos) << secured.output;
+  expect_identical_outputs("plain", "secured");
+}
+
+TEST_F(Security, AnUnsecuredParticipantSeesNothingAndChangesNothing) {
+  if (!compiled_in("cyclone")) GTEST_SKIP() << "the outsider is a Cyclone DDS participant";
+  const CommandResult plain = run(run_args("plain", "cyclone", false, {"--end", "1 s"}), log("plain"));
+  ASSERT_EQ(plain.exit_code, 0) << plain.output;
+  launch::DomainLock domain = launch::DomainLock::acquire();
+  auto unsecured = transport::create_participant("cyclone", domain.domain_id(), std::nullopt);
+  const pid_t launcher = spawn(run_args("secured", "cyclone", true, {"--end", "1 s", "--set", "dds.domain=" + std::to_string(domain.domain_id())}),
+                               log("secured"));
+  std::atomic<bool> done{false};
+  OutsiderReport seen;
+  std::thread outsider([&] { seen = act_as_outsider(*unsecured, launcher, done); });
+  const CommandResult secured = wait_for(launcher, log("secured"), 120);
+  done = true;
+  outsider.join();
+  ASSERT_EQ(secured.exit_code, 0) << secured.output;
+  EXPECT_GT(seen.seconds_alongside, 1.0);
+  EXPECT_EQ(seen.samples_read, 0);
+  EXPECT_EQ(seen.max_matched_writers, 0);
+  EXPECT_EQ(seen.max_matched_readers, 0);
+  expect_identical_outputs("plain", "secured");
+}
+
+// A valid identity (the run's own "servo") is refused what its permissions do not grant:
+// writing the slide's topic, reading the nodes' status. What it may do works (control case).
+class Permissions : public Security, public ::testing::WithParamInterface<std::string> {};
+
+TEST_P(Permissions, AValidParticipantIsRefusedTopicsItsPermissionsLack) {
+  const std::string vendor = GetParam();
+  if (!compiled_in(vendor)) GTEST_SKIP() << vendor << " is not in this build";
+  launch::DomainLock domain = launch::DomainLock::acquire();
+  auto servo = transport::create_participant(vendor, domain.domain_id(), transport::SecurityIdentity{sec(), "servo"});
+  const transport::TopicType* command = transport::find_topic_type("ServoCommand");
+  const transport::TopicType* slide = transport::find_topic_type("SlideState");
+  ASSERT_NE(command, nullptr);
+  ASSERT_NE(slide, nullptr);
+  EXPECT_NO_THROW(servo->create_writer("servo/command", *command));
+  EXPECT_NO_THROW(servo->create_reader("slide/state", *slide));
+  try {
+    servo->create_writer("slide/state", *slide);
+    ADD_FAILURE() << "servo may not publish slide/state, but its writer was created";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("slide/state"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(servo->create_status_reader(), std::runtime_error) << "servo may not read mechsim/status";
+  EXPECT_NO_THROW(servo->create_status_writer());
+}
+
+INSTANTIATE_TEST_SUITE_P(Vendors, Permissions, ::testing::Values("cyclone", "fastdds"),
+                         [](const auto& info) { return info.param; });
+
+// ---------------------------------------------------------------------------------------
+// Bad folders: refused before anything starts, naming the file and the key.
+
+TEST_F(Security, AMissingOrIncompleteFolderIsRefusedNamingTheFile) {
+  const std::string missing = (dir_ / "nowhere").string();
+  CommandResult r = run(launch_args(kScene, "missing", {"--set", "dds.security=" + missing}), log("missing"));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("dds.security: " + missing + "/ca.pem: missing"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("mechsim security init"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir_ / "missing")) << "nothing may start";
+
+  // A copy of the folder without the slide's certificate, and with a readable key.
+  const fs::path partial = dir_ / "partial";
+  fs::copy(sec(), partial, fs::copy_options::recursive);
+  fs::remove(partial / "slide" / "cert.pem");
+  ::chmod((partial / "tacho" / "key.pem").c_str(), 0644);
+  r = run(launch_args(kScene, "partial", {"--set", "dds.security=" + partial.string()}), log("partial"));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("dds.security: " + (partial / "slide" / "cert.pem").string() + ": missing (participant 'slide')"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find((partial / "tacho" / "key.pem").string() + ": a private key readable by others (mode 0644)"),
+            std::string::npos)
+      << r.output;
+  // mechsim security init writes its keys 0600.
+  struct stat st {};
+  ASSERT_EQ(::stat((fs::path(sec()) / "servo" / "key.pem").c_str(), &st), 0);
+  EXPECT_EQ(st.st_mode & 0777, 0600u);
+  ASSERT_EQ(::stat((fs::path(sec()) / "ca_key.pem").c_str(), &st), 0);
+  EXPECT_EQ(st.st_mode & 0777, 0600u);
+}
+
+}  // namespace
+}  // namespace mechsim::testing
