@@ -93,8 +93,9 @@ std::string utc(std::chrono::system_clock::time_point t) {
   return b;
 }
 
-// Every domain a run may take (the launcher picks one of 1..230, a scene may fix 0..232).
-const char* kDomains = "<domains><id_range><min>0</min><max>232</max></id_range></domains>";
+// Every domain a run may take: the launcher picks one of 1..230; Cyclone DDS refuses a
+// governance that names more (0..230 is its domain range).
+const char* kDomains = "<domains><id_range><min>0</min><max>230</max></id_range></domains>";
 
 std::string subject(const std::string& name) { return "CN=" + name + ",O=mechsim"; }
 

@@ -471,6 +471,9 @@ FastParticipant::FastParticipant(int domain_id, const std::optional<SecurityIden
   auto* factory = dds::DomainParticipantFactory::get_instance();
   // The default profile of FASTRTPS_DEFAULT_PROFILES_FILE if set, plus the security
   // properties of the identity (docs/security.md).
+  // load_profiles() first: the factory reads the XML file only then, and before it the
+  // default QoS is Fast DDS's own (every interface; a mixed run never finds Cyclone on lo).
+  factory->load_profiles();
   dds::DomainParticipantQos qos = factory->get_default_participant_qos();
   if (security)
     for (const auto& [name, value] : security_properties(*security, "fastdds")) qos.properties().properties().emplace_back(name, value);
