@@ -21,7 +21,14 @@
 #include <filesystem>
 #include <thread>
 
+#include <fstream>
+#include <optional>
+#include <set>
+
 #include "domain_lock.h"
+#include "mechsim/config/scene.h"
+#include "mechsim/cosim/scene_plan.h"
+#include "security_init.h"
 #include "mechsim/transport/backends.h"
 #include "mechsim/transport/security.h"
 #include "run_fixture.h"
@@ -289,6 +296,65 @@ TEST_F(Security, ASecuredMixedLayoutIsRefusedBeforeAnythingStarts) {
       << r.output;
   EXPECT_NE(r.output.find("got cyclone for the launcher, tacho and fastdds for servo, slide"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir_ / "mixed")) << "nothing may start";
+}
+
+// ---------------------------------------------------------------------------------------
+// The pieces without a run: permissions derived from the plan, one property builder.
+
+// On every shipped scene with a connection: each participant may publish exactly its own
+// topics (and status), and every topic it reads is one another participant may publish.
+TEST(SecurityGrants, EveryInputIsPublishableByExactlyOneOtherParticipant) {
+  int scenes = 0;
+  for (const auto& e : fs::recursive_directory_iterator(MECHSIM_SOURCE_DIR "/config/scenes")) {
+    if (e.path().extension() != ".yaml") continue;
+    std::optional<cosim::ScenePlan> plan;
+    config::Scene scene;
+    try {
+      scene = config::load_scene(e.path().string());
+      plan.emplace(cosim::ScenePlan::build(scene));
+    } catch (const config::ConfigError&) {
+      continue;  // not a time-run scene (cvt_map.yaml)
+    }
+    ++scenes;
+    const auto grants = security::grants_for_plan(*plan);
+    ASSERT_EQ(grants.size(), plan->nodes().size() + 2) << e.path();
+    for (const auto& node : plan->nodes()) {
+      const auto& g = *std::find_if(grants.begin(), grants.end(), [&](const auto& x) { return x.name == node.name(); });
+      for (const auto& topic : g.publish)
+        EXPECT_TRUE(topic == transport::kStatusTopic || topic.rfind(node.name() + "/", 0) == 0)
+            << e.path() << ": " << node.name() << " may publish " << topic;
+      for (const auto& topic : g.subscribe) {
+        if (topic == transport::kControlTopic) continue;
+        int publishers = 0;
+        for (const auto& other : grants)
+          publishers += other.name != node.name() && std::count(other.publish.begin(), other.publish.end(), topic);
+        EXPECT_EQ(publishers, 1) << e.path() << ": " << node.name() << " reads " << topic;
+      }
+    }
+  }
+  EXPECT_GT(scenes, 10);
+}
+
+// Both vendors get the same five files, each under its own property names.
+TEST(SecurityProperties, BothVendorsGetTheSameFiles) {
+  const fs::path dir = fs::temp_directory_path() / ("mechsim-security-props-" + std::to_string(::getpid()));
+  fs::create_directories(dir / "servo");
+  const transport::SecurityIdentity id{dir.string(), "servo"};
+  for (const auto& f : id.files()) std::ofstream(f) << "x";
+  ::chmod(id.private_key().c_str(), 0600);
+  std::vector<std::string> files;
+  for (const auto& f : id.files()) files.push_back("file://" + f);
+  for (const char* vendor : {"cyclone", "fastdds"}) {
+    std::set<std::string> uris;
+    for (const auto& [name, value] : transport::security_properties(id, vendor)) {
+      EXPECT_EQ(name.rfind("dds.sec.", 0), 0u) << name;
+      if (value.rfind("file://", 0) == 0) uris.insert(value);
+    }
+    EXPECT_EQ(uris, std::set<std::string>(files.begin(), files.end())) << vendor;
+  }
+  ::chmod(id.private_key().c_str(), 0640);
+  EXPECT_THROW(transport::security_properties(id, "cyclone"), std::runtime_error);
+  fs::remove_all(dir);
 }
 
 // ---------------------------------------------------------------------------------------

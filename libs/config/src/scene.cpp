@@ -185,10 +185,15 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
     if (dds->has("security")) {
       const std::string dir = dds->string("security");
       if (dir.empty()) dds->child("security").fail("expected the folder of `mechsim security init DIR SCENE` (docs/security.md)");
-      // Relative to the scene file; written back absolute, so that the run folder's copy of
-      // the scene names the same folder.
-      scene.security_dir = std::filesystem::absolute(std::filesystem::path(path).parent_path() / dir).lexically_normal().string();
-      if (std::filesystem::path(dir).is_absolute()) scene.security_dir = std::filesystem::path(dir).lexically_normal().string();
+      // Relative to the scene file when written in it, to the working folder when given with
+      // --set; written back absolute, so that the run folder's copy of the scene names the
+      // same folder.
+      const std::filesystem::path p(dir);
+      const bool from_file = std::none_of(overrides.begin(), overrides.end(),
+                                          [](const std::string& o) { return o.rfind("dds.security=", 0) == 0; });
+      scene.security_dir =
+          std::filesystem::absolute(p.is_absolute() || !from_file ? p : std::filesystem::path(path).parent_path() / p).lexically_normal().string();
+      if (scene.security_dir.size() > 1 && scene.security_dir.back() == '/') scene.security_dir.pop_back();
       scene.root.set_override("dds.security", scene.security_dir);
     }
   }
