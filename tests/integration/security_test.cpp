@@ -180,16 +180,32 @@ TEST_F(Security, ParticipantsWithoutAValidIdentitySeeNothingAndChangeNothing) {
 
 TEST_F(Security, AnUnsecuredParticipantSeesNothingAndChangesNothing) {
   if (!compiled_in("cyclone")) GTEST_SKIP() << "the outsider is a Cyclone DDS participant";
-  const CommandResult plain = run(run_args("plain", "cyclone", false, {"--end", "0.3 s"}), log("plain"));
+  const CommandResult plain = run(run_args("plain", "cyclone", false, {"--end", "0.5 s"}), log("plain"));
   ASSERT_EQ(plain.exit_code, 0) << plain.output;
   launch::DomainLock domain = launch::DomainLock::acquire();
   auto unsecured = transport::create_participant("cyclone", domain.domain_id(), std::nullopt);
-  const pid_t launcher = spawn(run_args("secured", "cyclone", true, {"--end", "0.3 s", "--set", "dds.domain=" + std::to_string(domain.domain_id())}),
+  const pid_t launcher = spawn(run_args("secured", "cyclone", true, {"--end", "0.5 s", "--set", "dds.domain=" + std::to_string(domain.domain_id())}),
                                log("secured"));
   std::atomic<bool> done{false};
   OutsiderReport seen;
   std::thread outsider([&] { seen = act_as_outsider(*unsecured, done); });
+  // `mechsim topic list` beside it: with the observer identity it sees the run's topics,
+  // without one nothing (docs/security.md, 'Which tools get an identity').
+  std::this_thread::sleep_for(std::chrono::milliseconds(1000));
+  const std::vector<std::string> list{kMechsim, "topic", "list", "--domain", std::to_string(domain.domain_id()), "--wait", "1.5"};
+  ::setenv(transport::kSecurityDirEnv, sec().c_str(), 1);
+  ::setenv(transport::kSecurityIdentityEnv, "observer", 1);
+  const CommandResult observed = run(list, log("observer"), 30);
+  ::unsetenv(transport::kSecurityDirEnv);
+  ::unsetenv(transport::kSecurityIdentityEnv);
+  const CommandResult unobserved = run(list, log("unsecured-list"), 30);
+  // Still running (not a zombie) after both lists: they saw the run, not its remains.
+  const std::string stat = slurp("/proc/" + std::to_string(launcher) + "/stat");
+  const bool still_running = stat.size() > stat.rfind(')') + 2 && stat[stat.rfind(')') + 2] != 'Z';
   const CommandResult secured = wait_for(launcher, log("secured"), 120);
+  EXPECT_TRUE(still_running) << "the run must still have been going while both listed";
+  EXPECT_NE(observed.output.find("servo/command"), std::string::npos) << observed.output;
+  EXPECT_NE(unobserved.output.find("no topics on domain"), std::string::npos) << unobserved.output;
   done = true;
   outsider.join();
   ASSERT_EQ(secured.exit_code, 0) << secured.output;
