@@ -190,7 +190,7 @@ TEST_F(Security, AnUnsecuredParticipantSeesNothingAndChangesNothing) {
   OutsiderReport seen;
   std::thread outsider([&] { seen = act_as_outsider(*unsecured, done); });
   // `mechsim topic list` beside it: with the observer identity it sees the run's topics,
-  // without one nothing (docs/security.md, 'Which tools get an identity').
+  // without one none of them (docs/security.md, 'Which tools get an identity').
   std::this_thread::sleep_for(std::chrono::milliseconds(1000));
   const std::vector<std::string> list{kMechsim, "topic", "list", "--domain", std::to_string(domain.domain_id()), "--wait", "1.5"};
   ::setenv(transport::kSecurityDirEnv, sec().c_str(), 1);
@@ -205,7 +205,11 @@ TEST_F(Security, AnUnsecuredParticipantSeesNothingAndChangesNothing) {
   const CommandResult secured = wait_for(launcher, log("secured"), 120);
   EXPECT_TRUE(still_running) << "the run must still have been going while both listed";
   EXPECT_NE(observed.output.find("servo/command"), std::string::npos) << observed.output;
-  EXPECT_NE(unobserved.output.find("no topics on domain"), std::string::npos) << unobserved.output;
+  // Unsecured, it sees only the other unsecured participant here (the outsider's two
+  // endpoints), none of the run's.
+  EXPECT_EQ(unobserved.output.find("mechsim/control"), std::string::npos) << unobserved.output;
+  EXPECT_EQ(unobserved.output.find("slide/state"), std::string::npos) << unobserved.output;
+  EXPECT_NE(observed.output.find("mechsim/control"), std::string::npos) << observed.output;
   done = true;
   outsider.join();
   ASSERT_EQ(secured.exit_code, 0) << secured.output;
