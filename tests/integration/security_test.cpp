@@ -409,5 +409,20 @@ TEST_F(Security, AMissingOrIncompleteFolderIsRefusedNamingTheFile) {
   EXPECT_EQ(st.st_mode & 0777, 0600u);
 }
 
+// Multi-host runs would need identities for the agents and the nodes they start: refused
+// when the scene is loaded, naming the key.
+TEST_F(Security, AMultiHostSceneWithSecurityIsRefused) {
+  const fs::path scene = dir_ / "hosts.yaml";
+  std::ofstream(scene) << "scene: secured_hosts\n"
+                          "time: {start: 0 s, end: 0.01 s, step: 1 ms}\n"
+                          "dds: {domain: 5, security: sec}\n"
+                          "hosts:\n  a: {address: 10.0.0.2}\n"
+                          "participants:\n  cam:\n    type: cam_shaft\n    host: a\n"
+                          "    params: {speed: 60 rpm, pitch_radius: 50 mm, law: [{type: dwell, start: 0 deg, span: 360 deg, lift: 0 mm}]}\n";
+  const CommandResult r = run({kMechsim, "check", scene.string()}, log("check"));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find(scene.string() + ": hosts: expected no hosts with dds.security"), std::string::npos) << r.output;
+}
+
 }  // namespace
 }  // namespace mechsim::testing

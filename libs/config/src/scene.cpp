@@ -222,7 +222,7 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
     }
     // The agents and the nodes they start would need identities of their own: not done yet.
     if (!scene.security_dir.empty())
-      hosts->fail("a single-host scene: DDS security (dds.security) is not available for multi-host runs yet (docs/security.md)");
+      hosts->fail("expected no hosts with dds.security: DDS security is not available for multi-host runs yet (docs/security.md)");
   }
 
   const ConfigNode participants = root.child("participants");
