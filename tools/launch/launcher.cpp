@@ -31,6 +31,7 @@
 #include "node_processes.h"
 #include "replay_input.h"
 #include "run_recording.h"
+#include "run_security.h"
 #include "paths.h"
 #include "run_report.h"
 #include "signal_compare.h"
@@ -265,7 +266,7 @@ RunOutcome Run::run_nodes() {
       args.push_back("--replay");
       args.push_back(it->second);
     }
-    processes_.start(node.name(), exe, args, run_dir_ + "/" + node.name() + ".log");
+    processes_.start(node.name(), exe, args, run_dir_ + "/" + node.name() + ".log", node_security_environment(scene_, node.name()));
     node_args_[node.name()] = args;
     watch_[node.name()] = {};
   }
@@ -367,7 +368,7 @@ RunOutcome Run::run_nodes() {
     auto restart = [&](NodeProcess& p) {
       std::vector<std::string> args = node_args_.at(p.name);
       args.insert(args.end(), {"--resume", std::to_string(*common), "--generation", std::to_string(generation)});
-      processes_.restart(p.name, args, run_dir_ + "/" + p.name + ".log");
+      processes_.restart(p.name, args, run_dir_ + "/" + p.name + ".log", node_security_environment(scene_, p.name));
       watch_[p.name].last_seen = Clock::now();
       watch_[p.name].done_at_s = -1;  // it finishes again
     };
@@ -584,6 +585,7 @@ json Run::summarise(const RunOutcome& out) {
   s["run_dir"] = run_dir_;
   s["domain_id"] = domain_;
   s["dds_vendor"] = scene_.vendor;  // the launcher's own participant
+  if (!scene_.security_dir.empty()) s["dds_security"] = scene_.security_dir;
   s["mode"] = scene_.mode;
   s["redundant_samples"] = scene_.faults.redundant();
   if (scene_.checkpointing()) {
@@ -667,6 +669,11 @@ int Run::execute() {
                          "(docs/realtime.md, 'Rights'); nothing was started\n");
     return 2;
   }
+  // DDS security (docs/security.md): every identity the run needs, before anything starts.
+  if (const auto problems = security_problems(scene_); !problems.empty()) {
+    for (const auto& why : problems) std::fprintf(stderr, "mechsim launch: %s\n", why.c_str());
+    return 2;
+  }
   std::random_device rd;
   run_id_ = (static_cast<std::uint64_t>(rd()) << 32) ^ rd() ^ static_cast<std::uint64_t>(::getpid());
   run_dir_ = (fs::path(opt_.runs_dir) / (scene_.name + "-" + hex_id(run_id_).substr(8))).string();
@@ -698,6 +705,10 @@ int Run::execute() {
   } else {
     configure_dds_environment();
   }
+  configure_security_environment(scene_);
+  if (!scene_.security_dir.empty())
+    std::fprintf(stderr, "mechsim: DDS security: %s (authentication, access control, encryption; docs/security.md)\n",
+                 scene_.security_dir.c_str());
   participant_ = transport::create_participant(scene_.vendor, domain_);
   control_ = participant_->create_control_writer();
   status_ = participant_->create_status_reader();

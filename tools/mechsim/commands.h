@@ -33,5 +33,6 @@ void add_bag_command(CLI::App& app, int& exit_code);
 void add_topic_command(CLI::App& app, int& exit_code);
 void add_bench_command(CLI::App& app, int& exit_code);
 void add_agent_command(CLI::App& app, int& exit_code);
+void add_security_command(CLI::App& app, int& exit_code);
 
 }  // namespace mechsim::tools

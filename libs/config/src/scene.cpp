@@ -3,6 +3,7 @@
 
 #include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <regex>
 #include <sstream>
 
@@ -180,12 +181,26 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   }
   if (root.has("hang_timeout")) scene.hang_timeout = root.positive_quantity("hang_timeout", dim::time);
   if (auto dds = root.optional_child("dds")) {
-    dds->allow_only({"vendor", "domain"});
+    dds->allow_only({"vendor", "domain", "security"});
     if (dds->has("vendor")) scene.vendor = dds->choice("vendor", {"cyclone", "fastdds"});
     if (dds->has("domain") && dds->string("domain") != "auto") {
       long d = dds->integer("domain");
       if (d < 0 || d > 232) dds->child("domain").fail("expected 'auto' or a domain id in 0..232");
       scene.domain_id = static_cast<int>(d);
+    }
+    if (dds->has("security")) {
+      const std::string dir = dds->string("security");
+      if (dir.empty()) dds->child("security").fail("expected the folder of `mechsim security init DIR SCENE` (docs/security.md)");
+      // Relative to the scene file when written in it, to the working folder when given with
+      // --set; written back absolute, so that the run folder's copy of the scene names the
+      // same folder.
+      const std::filesystem::path p(dir);
+      const bool from_file = std::none_of(overrides.begin(), overrides.end(),
+                                          [](const std::string& o) { return o.rfind("dds.security=", 0) == 0; });
+      scene.security_dir =
+          std::filesystem::absolute(p.is_absolute() || !from_file ? p : std::filesystem::path(path).parent_path() / p).lexically_normal().string();
+      if (scene.security_dir.size() > 1 && scene.security_dir.back() == '/') scene.security_dir.pop_back();
+      scene.root.set_override("dds.security", scene.security_dir);
     }
   }
   if (auto faults = root.optional_child("faults")) {
@@ -218,6 +233,9 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
         if (other.address == spec.address) h.child("address").fail("expected each host once: " + other.key_path + " has the same address");
       scene.hosts.push_back(spec);
     }
+    // The agents and the nodes they start would need identities of their own: not done yet.
+    if (!scene.security_dir.empty())
+      hosts->fail("expected no hosts with dds.security: DDS security is not available for multi-host runs yet (docs/security.md)");
   }
 
   const ConfigNode participants = root.child("participants");

@@ -25,12 +25,18 @@ std::vector<std::string> available_vendors() {
 }
 
 std::unique_ptr<Participant> create_participant(const std::string& vendor, int domain_id) {
+  // In-process participants never leave the process: nothing to secure.
+  return create_participant(vendor, domain_id, vendor == "inproc" ? std::nullopt : security_from_environment());
+}
+
+std::unique_ptr<Participant> create_participant(const std::string& vendor, int domain_id,
+                                                const std::optional<SecurityIdentity>& security) {
   if (vendor == "inproc") return std::make_unique<inproc::InprocParticipant>(domain_id);
 #ifdef MECHSIM_HAVE_CYCLONEDDS
-  if (vendor == "cyclone") return std::make_unique<cyclone::CycloneParticipant>(domain_id);
+  if (vendor == "cyclone") return std::make_unique<cyclone::CycloneParticipant>(domain_id, security);
 #endif
 #ifdef MECHSIM_HAVE_FASTDDS
-  if (vendor == "fastdds") return std::make_unique<fastdds::FastParticipant>(domain_id);
+  if (vendor == "fastdds") return std::make_unique<fastdds::FastParticipant>(domain_id, security);
 #endif
   throw std::runtime_error("DDS vendor '" + vendor + "' is not compiled into this build");
 }

@@ -2,12 +2,13 @@
 // and the factory that picks a vendor's raw backend. Builds without any DDS vendor, so the
 // tools that use the seam link in every build configuration.
 #include "mechsim/transport/raw.h"
+#include "mechsim/transport/security.h"
 
 #include <stdexcept>
 
 #ifdef MECHSIM_HAVE_CYCLONEDDS
 namespace mechsim::transport::cyclone {
-std::unique_ptr<RawParticipant> create_cyclone_raw_participant(int domain_id);  // cyclone_raw.cpp
+std::unique_ptr<RawParticipant> create_cyclone_raw_participant(int domain_id, const std::optional<SecurityIdentity>& security);  // cyclone_raw.cpp
 }
 #endif
 
@@ -37,7 +38,7 @@ std::string scoped_type_name(std::string_view name) {
 
 std::unique_ptr<RawParticipant> create_raw_participant(const std::string& vendor, int domain_id) {
 #ifdef MECHSIM_HAVE_CYCLONEDDS
-  if (vendor == "cyclone") return cyclone::create_cyclone_raw_participant(domain_id);
+  if (vendor == "cyclone") return cyclone::create_cyclone_raw_participant(domain_id, security_from_environment());
 #endif
   // Only Cyclone has a raw backend: the tools (recorder, player, topic inspection) are
   // Cyclone participants that interoperate with nodes of either vendor on the wire.

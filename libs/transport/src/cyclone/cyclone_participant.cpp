@@ -357,9 +357,8 @@ class CycloneAgentReader final : public AgentReader {
 
 }  // namespace
 
-CycloneParticipant::CycloneParticipant(int domain_id) {
-  participant_ = check(dds_create_participant(static_cast<dds_domainid_t>(domain_id), nullptr, nullptr),
-                       "create participant on domain " + std::to_string(domain_id));
+CycloneParticipant::CycloneParticipant(int domain_id, const std::optional<SecurityIdentity>& security) {
+  participant_ = create_participant_entity(domain_id, security);
   waitset_ = check(dds_create_waitset(participant_), "create waitset");
   guard_ = check(dds_create_guardcondition(participant_), "create guard condition");
   check(dds_waitset_attach(waitset_, guard_, guard_), "attach guard condition");

@@ -5,6 +5,7 @@
 
 #include "dds/dds.h"
 #include "mechsim/transport/participant.h"
+#include "mechsim/transport/security.h"
 
 namespace mechsim::transport::cyclone {
 
@@ -13,7 +14,7 @@ namespace mechsim::transport::cyclone {
 // CYCLONEDDS_URI, which the launcher sets (loopback only; config/dds/cyclonedds.xml).
 class CycloneParticipant final : public Participant {
  public:
-  explicit CycloneParticipant(int domain_id);
+  CycloneParticipant(int domain_id, const std::optional<SecurityIdentity>& security);
   ~CycloneParticipant() override;
   std::unique_ptr<SampleWriter> create_writer(const std::string& topic, const TopicType& type) override;
   std::unique_ptr<SampleReader> create_reader(const std::string& topic, const TopicType& type) override;

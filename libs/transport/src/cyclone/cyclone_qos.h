@@ -2,7 +2,12 @@
 // (cyclone_participant.cpp) and the raw ones of the tools (cyclone_raw.cpp) must match.
 #pragma once
 
+#include <optional>
+#include <stdexcept>
+#include <string>
+
 #include "dds/dds.h"
+#include "mechsim/transport/security.h"
 
 namespace mechsim::transport::cyclone {
 
@@ -46,6 +51,23 @@ inline void set_qos(Qos& qos, QosKind kind) {
       dds_qset_history(qos.q, DDS_HISTORY_KEEP_LAST, 256);
       break;
   }
+}
+
+// A participant on `domain_id`, secured with `security`'s identity when given (the
+// properties of security.h on its QoS; docs/security.md). Throws std::runtime_error.
+inline dds_entity_t create_participant_entity(int domain_id, const std::optional<SecurityIdentity>& security) {
+  Qos qos;
+  if (security)
+    for (const auto& [name, value] : security_properties(*security, "cyclone")) dds_qset_prop(qos.q, name.c_str(), value.c_str());
+  const dds_entity_t pp = dds_create_participant(static_cast<dds_domainid_t>(domain_id), qos.q, nullptr);
+  if (pp < 0)
+    throw std::runtime_error("Cyclone DDS: create participant on domain " + std::to_string(domain_id) +
+                             (security ? " with DDS security identity '" + security->name + "' of " + security->dir +
+                                             " (the plugins' reason is in the Cyclone DDS log, enable it with "
+                                             "CYCLONEDDS_URI <Tracing>)"
+                                       : std::string()) +
+                             ": " + dds_strretcode(pp));
+  return pp;
 }
 
 }  // namespace mechsim::transport::cyclone

@@ -206,9 +206,8 @@ class CycloneRawWriter final : public RawWriter {
 
 class CycloneRawParticipant final : public RawParticipant {
  public:
-  explicit CycloneRawParticipant(int domain_id) {
-    participant_ = check(dds_create_participant(static_cast<dds_domainid_t>(domain_id), nullptr, nullptr),
-                         "create participant on domain " + std::to_string(domain_id));
+  CycloneRawParticipant(int domain_id, const std::optional<SecurityIdentity>& security) {
+    participant_ = create_participant_entity(domain_id, security);
     check(dds_get_guid(participant_, &own_guid_), "get participant guid");
     waitset_ = check(dds_create_waitset(participant_), "create waitset");
     guard_ = check(dds_create_guardcondition(participant_), "create guard condition");
@@ -349,8 +348,8 @@ class CycloneRawParticipant final : public RawParticipant {
 }  // namespace cyclone
 
 namespace cyclone {
-std::unique_ptr<RawParticipant> create_cyclone_raw_participant(int domain_id) {
-  return std::make_unique<CycloneRawParticipant>(domain_id);
+std::unique_ptr<RawParticipant> create_cyclone_raw_participant(int domain_id, const std::optional<SecurityIdentity>& security) {
+  return std::make_unique<CycloneRawParticipant>(domain_id, security);
 }
 }  // namespace cyclone
 

@@ -27,6 +27,7 @@
 #include <fastdds/dds/topic/TypeSupport.hpp>
 
 #include "fastdds_types.h"
+#include "mechsim/transport/security.h"
 #include "mechsim/transport/raw.h"
 #include "fastddsgen/agentPubSubTypes.h"
 #include "fastddsgen/controlPubSubTypes.h"
@@ -481,12 +482,21 @@ void clean_shared_memory() {
     std::fprintf(stderr, "mechsim: 'fastdds shm clean' failed; stale Fast DDS segments may remain in /dev/shm\n");
 }
 
-FastParticipant::FastParticipant(int domain_id) : core_(std::make_shared<FastCore>()) {
+FastParticipant::FastParticipant(int domain_id, const std::optional<SecurityIdentity>& security)
+    : core_(std::make_shared<FastCore>()) {
   auto* factory = dds::DomainParticipantFactory::get_instance();
-  // PARTICIPANT_QOS_DEFAULT: the default profile of FASTRTPS_DEFAULT_PROFILES_FILE if set.
-  core_->participant = check(factory->create_participant(static_cast<dds::DomainId_t>(domain_id), dds::PARTICIPANT_QOS_DEFAULT,
+  // The default profile of FASTRTPS_DEFAULT_PROFILES_FILE if set, plus the security
+  // properties of the identity (docs/security.md).
+  // load_profiles() first: the factory reads the XML file only then, and before it the
+  // default QoS is Fast DDS's own (every interface; a mixed run never finds Cyclone on lo).
+  factory->load_profiles();
+  dds::DomainParticipantQos qos = factory->get_default_participant_qos();
+  if (security)
+    for (const auto& [name, value] : security_properties(*security, "fastdds")) qos.properties().properties().emplace_back(name, value);
+  core_->participant = check(factory->create_participant(static_cast<dds::DomainId_t>(domain_id), qos,
                                                          &core_->tool_readers, dds::StatusMask::none()),
                              "create participant on domain " + std::to_string(domain_id) +
+                                 (security ? " with DDS security identity '" + security->name + "' of " + security->dir : std::string()) +
                                  (std::getenv("FASTRTPS_DEFAULT_PROFILES_FILE")
                                       ? std::string(" (profiles from ") + std::getenv("FASTRTPS_DEFAULT_PROFILES_FILE") + ")"
                                       : std::string()));

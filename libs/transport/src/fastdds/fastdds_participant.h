@@ -4,6 +4,7 @@
 #include <string>
 
 #include "mechsim/transport/participant.h"
+#include "mechsim/transport/security.h"
 
 namespace mechsim::transport::fastdds {
 
@@ -21,7 +22,7 @@ void clean_shared_memory();
 // triggers while a reader holds a sample, like Cyclone's) and a GuardCondition for wake().
 class FastParticipant final : public Participant {
  public:
-  explicit FastParticipant(int domain_id);
+  FastParticipant(int domain_id, const std::optional<SecurityIdentity>& security);
   ~FastParticipant() override;
   std::unique_ptr<SampleWriter> create_writer(const std::string& topic, const TopicType& type) override;
   std::unique_ptr<SampleReader> create_reader(const std::string& topic, const TopicType& type) override;

@@ -156,6 +156,9 @@ struct Scene {
   RealtimeSpec realtime;
   std::string vendor = default_dds_vendor();  // scene-wide default
   std::optional<int> domain_id;    // default: the launcher picks a free one
+  // dds.security: the folder of `mechsim security init` (absolute); empty: unsecured
+  // (docs/security.md).
+  std::string security_dir;
   double hang_timeout = 5.0;       // s without a status from a node => hung
   std::vector<HostSpec> hosts;     // empty: a single-host run
   std::vector<ParticipantSpec> participants;

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "mechsim/transport/participant.h"
+#include "mechsim/transport/security.h"
 
 namespace mechsim::transport {
 
@@ -16,7 +17,12 @@ std::vector<std::string> available_vendors();
 // vendor when it is not compiled in or the participant cannot be created. "inproc" (always
 // built; not in available_vendors(): it connects only the participants of one process)
 // gives a participant of an in-process domain: a scene's nodes as threads (inproc_run.h).
+// Secured (docs/security.md) when MECHSIM_DDS_SECURITY and MECHSIM_DDS_IDENTITY are set
+// (security_from_environment()), the launcher's way of handing a process its identity.
 std::unique_ptr<Participant> create_participant(const std::string& vendor, int domain_id);
+// The same with an explicit identity (nullopt: unsecured, whatever the environment says).
+std::unique_ptr<Participant> create_participant(const std::string& vendor, int domain_id,
+                                                const std::optional<SecurityIdentity>& security);
 
 // Removes what killed processes of any backend left on this host (Fast DDS: its
 // shared-memory transport's segments). Leaves live processes' resources alone, so it is

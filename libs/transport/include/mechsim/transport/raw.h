@@ -108,6 +108,8 @@ inline constexpr const char* kToolReaderUserData = "mechsim:tool";
 // A participant of its own on `domain_id` (the network configuration comes from
 // CYCLONEDDS_URI, as for the typed seam). Throws std::runtime_error when the vendor is not
 // compiled in or the participant cannot be created. Only "cyclone" has a raw backend.
+// Secured like create_participant() when MECHSIM_DDS_SECURITY / MECHSIM_DDS_IDENTITY are set
+// (security.h, docs/security.md).
 std::unique_ptr<RawParticipant> create_raw_participant(const std::string& vendor, int domain_id);
 
 }  // namespace mechsim::transport

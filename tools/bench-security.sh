@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# What DDS Security costs (docs/security.md): nc_slide_loop (3 nodes + launcher, 20 000
+# lock-step steps) unsecured and secured, per vendor layout, the variants taking turns inside
+# every repetition so the machine's load falls on all alike; prints the medians (and range)
+# as a Markdown table.
+#   tools/bench-security.sh [RUNS] [BUILD_DIR] [LAYOUTS]     e.g. tools/bench-security.sh 5 build "cyclone fastdds"
+set -euo pipefail
+cd "$(dirname "$0")/.."
+runs=${1:-5}
+build=${2:-build}
+layouts=${3:-cyclone fastdds}
+mechsim="$build/bin/mechsim"
+scene=config/scenes/nc_slide_loop.yaml
+[ -x "$mechsim" ] || { echo "bench-security: $mechsim is missing (build first, or pass the build folder)" >&2; exit 1; }
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+unset CYCLONEDDS_URI FASTRTPS_DEFAULT_PROFILES_FILE MECHSIM_DDS_SECURITY MECHSIM_DDS_IDENTITY
+"$mechsim" security init "$tmp/sec" "$scene" > "$tmp/init.log" 2>&1 || { cat "$tmp/init.log" >&2; exit 1; }
+
+: > "$tmp/results"
+for i in $(seq "$runs"); do
+  for layout in $layouts; do
+    for variant in unsecured secured; do
+      extra=()
+      [ "$variant" = secured ] && extra=(--set "dds.security=$tmp/sec")
+      rate=failed
+      if "$mechsim" launch "$scene" --end "0.5 s" --dds "$layout" "${extra[@]}" --no-plot --no-progress \
+           --runs-dir "$tmp/runs" --json "$tmp/s.json" > "$tmp/launch.log" 2>&1; then
+        rate=$(python3 -c "import json;print(round(json.load(open('$tmp/s.json'))['steps_per_second']))")
+      else
+        echo "run $i: $layout $variant failed: $(tail -n 2 "$tmp/launch.log" | head -n 1)" >&2
+      fi
+      rm -rf "$tmp/runs"
+      printf '%s\t%s\t%s\n' "$layout" "$variant" "$rate" >> "$tmp/results"
+      echo "run $i: $layout $variant: $rate steps/s" >&2
+    done
+  done
+done
+
+python3 - "$tmp/results" "$runs" <<'PY'
+import statistics, sys
+path, runs = sys.argv[1], sys.argv[2]
+rates = {}
+for line in open(path):
+    layout, variant, rate = line.rstrip("\n").split("\t")
+    rates.setdefault(layout, {}).setdefault(variant, []).append(rate)
+def cell(values):
+    ok = sorted(float(r) for r in values if r != "failed")
+    failed = sum(r == "failed" for r in values)
+    text = f"{statistics.median(ok):.0f} ({ok[0]:.0f}-{ok[-1]:.0f})" if ok else "-"
+    return (text + (f", {failed} failed" if failed else "")), (statistics.median(ok) if ok else None)
+print(f"nc_slide_loop, steps per second, median of {runs} (min-max); 20 000 lock-step steps per run\n")
+print("| layout | unsecured | secured | secured / unsecured |")
+print("|---|---|---|---|")
+for layout, by in rates.items():
+    (u, um), (s, sm) = cell(by.get("unsecured", [])), cell(by.get("secured", []))
+    ratio = f"{sm / um:.2f}" if um and sm else "-"
+    print(f"| {layout} | {u} | {s} | {ratio} |")
+PY

@@ -1,0 +1,56 @@
+#include "run_security.h"
+
+#include <cstdlib>
+
+#include "mechsim/transport/security.h"
+
+namespace mechsim::launch {
+
+namespace {
+constexpr const char* kLauncherIdentity = "launcher";  // = security::kLauncherIdentity (tools/security)
+}
+
+std::vector<std::string> security_problems(const config::Scene& scene) {
+  std::vector<std::string> problems;
+  if (scene.security_dir.empty()) return problems;
+  std::vector<std::string> names{kLauncherIdentity};
+  for (const auto& p : scene.participants) names.push_back(p.name);
+  // Cyclone DDS 0.10 and Fast DDS 2.9 do not complete the PKI-DH handshake with each other
+  // (docs/security.md#vendors): a mixed secured run would only time out.
+  std::string cyclone, fastdds;
+  const auto note = [&](const std::string& vendor, const std::string& who) {
+    std::string& list = vendor == "fastdds" ? fastdds : cyclone;
+    list += (list.empty() ? "" : ", ") + who;
+  };
+  note(scene.vendor, "the launcher");
+  if (scene.record) note("cyclone", "the recorder");  // the raw-CDR recorder is a Cyclone participant
+  for (const auto& p : scene.participants) note(p.vendor, p.name);
+  const char* allow = std::getenv("MECHSIM_SECURITY_ALLOW_MIXED");
+  if (!cyclone.empty() && !fastdds.empty() && !(allow && std::string(allow) == "1"))
+    problems.push_back(scene.file + ": dds.security: expected one DDS vendor for the launcher and every participant: Cyclone "
+                       "DDS 0.10 and Fast DDS 2.9 do not complete the DDS Security handshake with each other (docs/security.md, "
+                       "'Vendors'); got cyclone for " + cyclone + " and fastdds for " + fastdds);
+  for (const auto& name : names)
+    for (const auto& why : transport::security_file_problems({scene.security_dir, name}))
+      problems.push_back(scene.file + ": dds.security: " + why + (name == kLauncherIdentity ? "" : " (participant '" + name + "')") +
+                         "; make the folder with `mechsim security init " + scene.security_dir + " " + scene.file +
+                         "` (docs/security.md)");
+  return problems;
+}
+
+void configure_security_environment(const config::Scene& scene) {
+  if (scene.security_dir.empty()) {
+    ::unsetenv(transport::kSecurityDirEnv);
+    ::unsetenv(transport::kSecurityIdentityEnv);
+    return;
+  }
+  ::setenv(transport::kSecurityDirEnv, scene.security_dir.c_str(), 1);
+  ::setenv(transport::kSecurityIdentityEnv, kLauncherIdentity, 1);
+}
+
+std::vector<std::string> node_security_environment(const config::Scene& scene, const std::string& node) {
+  if (scene.security_dir.empty()) return {};
+  return transport::security_environment({scene.security_dir, node});
+}
+
+}  // namespace mechsim::launch
