@@ -14,6 +14,7 @@ packages=(
   gnuplot-nox                             # PNG plots
   libzstd-dev liblz4-dev                  # MCAP chunk compression
   iproute2 iptables                       # the multi-host test bed (tools/netns-hosts.sh)
+  clang libclang-rt-14-dev                # sanitizer + libFuzzer build only (label fuzz, .ci/run)
 )
 # node + npm run the third-party MCAP reader test; machines that already have a Node.js
 # (e.g. from NodeSource, whose nodejs conflicts with Debian's npm) keep theirs.
