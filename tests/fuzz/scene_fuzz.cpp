@@ -25,6 +25,8 @@ std::vector<std::string> small_cvt_tables(const mechsim::config::Scene& scene) {
     if (!belt_map || belt_map->is_map())
       for (const char* axis : {"s_points", "torque_points", "speed_points"})
         overrides.push_back(params + "belt_map." + axis + "=2");
+    else if (belt_map->is_scalar() && belt_map->as_string() != "direct")
+      overrides.push_back(params + "belt_map=direct");  // "table" at its default size
   }
   return overrides;
 }
@@ -40,7 +42,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
     // the belt model by default: 0.5 s optimised, about 9 s under the sanitizers), by design
     // and within the point counts its validation allows. The harness shrinks those tables
     // through the scene's own override path, so that an input costs milliseconds and its
-    // parameters are still validated (belt_map given as a word is left as it is).
+    // parameters are still validated (belt_map: table becomes direct).
     if (const auto overrides = small_cvt_tables(scene); !overrides.empty())
       scene = mechsim::config::load_scene(scene_file.path(), overrides);
     const mechsim::cosim::ScenePlan plan = mechsim::cosim::ScenePlan::build(scene);
