@@ -15,6 +15,7 @@ packages=(
   libzstd-dev liblz4-dev                  # MCAP chunk compression
   iproute2 iptables                       # the multi-host test bed (tools/netns-hosts.sh)
   openssl                                 # `mechsim security init` (docs/security.md)
+  clang libclang-rt-14-dev                # sanitizer + libFuzzer build only (label fuzz, .ci/run)
 )
 # node + npm run the third-party MCAP reader test; machines that already have a Node.js
 # (e.g. from NodeSource, whose nodejs conflicts with Debian's npm) keep theirs.

@@ -127,6 +127,9 @@ double read_number(std::string_view& s) {
   return negative ? -value : value;
 }
 
+constexpr int kMaxExponent = 9;         // of one unit symbol
+constexpr int kMaxDimensionExponent = 99;  // of the whole expression, e.g. "m m m ..."
+
 // Reads an optional exponent after a unit symbol: "^n", "^-n", "²", "³".
 int read_exponent(std::string_view& s, std::string_view symbol) {
   if (s.starts_with(kSuperscript2)) {
@@ -147,6 +150,12 @@ int read_exponent(std::string_view& s, std::string_view symbol) {
     throw Detail("'^' after '" + std::string(symbol) + "' must be followed by an integer exponent");
   }
   s.remove_prefix(static_cast<std::size_t>(end - s.data()));
+  // Physical units need small exponents; a bound keeps the dimension's int exponents (and
+  // their products and sums below) far from overflow ("1 m^2147483647 m" was UB).
+  if (exponent < -kMaxExponent || exponent > kMaxExponent) {
+    throw Detail("the exponent of '" + std::string(symbol) + "' must be an integer from -" +
+                 std::to_string(kMaxExponent) + " to " + std::to_string(kMaxExponent));
+  }
   return exponent;
 }
 
@@ -198,6 +207,8 @@ Quantity parse_or_throw_detail(std::string_view text) {
     if (in_denominator) exponent = -exponent;
     q.value_si *= std::pow(unit->factor, exponent);
     q.dimension = q.dimension * unit->dimension.pow(exponent);
+    for (int e : q.dimension.exp)
+      if (e < -kMaxDimensionExponent || e > kMaxDimensionExponent) throw Detail("the unit's exponents are out of range");
     q.has_unit = true;
     factor_pending_after_slash = false;
   }

@@ -266,7 +266,10 @@ Message to_message(const MessageView& m) {
 
 std::vector<Message> McapReader::read_messages() const {
   std::vector<Message> out;
-  out.reserve(impl_->statistics.message_count);
+  // The Statistics count is the file's claim (unchecked when the summary CRC is 0): a hint
+  // bounded by the Message records the file could hold uncompressed, never a size to allocate.
+  constexpr uint64_t kMinMessageRecordSize = kRecordPrefixSize + 2 + 4 + 8 + 8;
+  out.reserve(std::min(impl_->statistics.message_count, impl_->file.size() / kMinMessageRecordSize));
   for_each_message([&](const MessageView& m) { out.push_back(to_message(m)); });
   return out;
 }

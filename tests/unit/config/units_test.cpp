@@ -133,6 +133,21 @@ TEST(Units, CompoundUnitsAndExponents) {
   expect_si("0.5 m/s", dim::velocity, 0.5);
   expect_si("0.05 Pa s", dim::dynamic_viscosity, 0.05);
   expect_si("25mm", dim::length, 0.025);
+  expect_si("1 m^9/m^9", dim::dimensionless, 1.0);  // the largest exponents accepted
+  expect_si("1 m^-9 m^9", dim::dimensionless, 1.0);
+}
+
+TEST(Units, ExponentsAreBounded) {
+  // A product of many factors stays bounded too: 12 factors of m^9 reach 108 > 99.
+  std::string text = "1";
+  for (int i = 0; i < 12; ++i) text += " m^9";
+  EXPECT_THROW(parse_quantity(text), UnitError);
+  try {
+    parse_quantity("1 m^12");
+    FAIL() << "no error";
+  } catch (const UnitError& e) {
+    EXPECT_STREQ(e.what(), "cannot read '1 m^12' as a quantity: the exponent of 'm' must be an integer from -9 to 9");
+  }
 }
 
 TEST(Units, AngleIsItsOwnDimension) {
@@ -174,6 +189,10 @@ TEST(Units, Refusals) {
       "1e999 m",     // overflows
       "1e300 km^3",  // finite number, overflowing SI value
       "3 m^x",       // exponent not an integer
+      "1 s^2147483647 s",   // exponents beyond +-9 (their int sum overflowed: UB, found by scene_fuzz)
+      "1 1/m^-2147483648",  // (negating it overflowed)
+      "1 m^10",
+      "1 kg^-10",
       "3 m^",
       "3 N/",            // nothing after the slash
       "3 ^2",            // exponent without a unit

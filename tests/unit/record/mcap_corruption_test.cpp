@@ -93,6 +93,27 @@ TEST_F(McapCorruption, SummaryCrcMismatchIsRefusedAndRecoverable) {
   EXPECT_TRUE(McapReader(out).read_messages() == sample_.messages);
 }
 
+// A summary without CRC (0: not computed, as the spec allows) is taken as it is; a
+// Statistics message count of 2^57 must not become an allocation (read_messages reserved
+// it: ASan's allocation-size-too-big, found by tests/fuzz/mcap_fuzz). The messages are read.
+TEST_F(McapCorruption, ImplausibleMessageCountInAnUncheckedSummaryIsNotAllocated) {
+  auto bytes = bytes_;
+  const std::size_t footer = bytes.size() - 8 - 29;
+  const uint64_t summary_start = test::le_u64(bytes, footer + 9);
+  for (int i = 0; i < 4; ++i) bytes.at(footer + 9 + 16 + i) = 0;  // summary_crc = 0
+  std::size_t statistics = 0;
+  for (std::size_t at = summary_start; at < footer; at += 9 + test::le_u64(bytes, at + 1))
+    if (bytes.at(at) == 0x0B) statistics = at;
+  ASSERT_NE(statistics, 0u);
+  ASSERT_EQ(test::le_u64(bytes, statistics + 9), sample_.messages.size());
+  bytes.at(statistics + 9 + 7) = 0x02;  // message_count += 2^57
+  const std::string path = dir_.file("big_count.mcap");
+  test::write_bytes(path, bytes.data(), bytes.size());
+  const McapReader reader(path);
+  EXPECT_EQ(reader.statistics().message_count, (uint64_t{1} << 57) + sample_.messages.size());
+  EXPECT_TRUE(reader.read_messages() == sample_.messages);
+}
+
 TEST_F(McapCorruption, NotAnMcapFileIsRefused) {
   auto bytes = bytes_;
   bytes[1] = 'X';
