@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "cdr_decoder.h"
+#include "mechsim/config/scene.h"
 #include "idl_schema.h"
 #include "mechsim/transport/raw.h"
 
@@ -25,13 +26,7 @@ void TopicSelection::validate() const {
   }
 }
 
-bool TopicSelection::selects(const std::string& topic) const {
-  if (all()) return true;
-  for (const auto& n : names)
-    if (n == topic) return true;
-  if (!regex.empty()) return std::regex_match(topic, std::regex(regex, std::regex::ECMAScript));
-  return false;
-}
+bool TopicSelection::selects(const std::string& topic) const { return config::topic_selected(names, regex, topic); }
 
 record::Compression parse_compression(const std::string& name) {
   if (name == "zstd") return record::Compression::zstd;

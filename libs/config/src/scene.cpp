@@ -45,6 +45,12 @@ const HostSpec* Scene::find_host(const std::string& name) const {
   return nullptr;
 }
 
+bool topic_selected(const std::vector<std::string>& names, const std::string& regex, const std::string& topic) {
+  if (names.empty() && regex.empty()) return true;
+  if (std::find(names.begin(), names.end(), topic) != names.end()) return true;
+  return !regex.empty() && std::regex_match(topic, std::regex(regex, std::regex::ECMAScript));
+}
+
 namespace {
 
 // An IPv4 address or a DNS host name (RFC 1123 characters); resolved by the launcher.

@@ -221,6 +221,7 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
     // by only one side can lose the first sample), then wait for the start command.
     auto matched = [&] {
       if (writer->matched_readers() < node.subscriber_count) return false;
+      if (node.recorded && writer->matched_readers_including_tools() < node.subscriber_count + 1) return false;
       for (const auto& r : readers)
         if (r->matched_writers() < 1) return false;
       return !node.cut || (cut_writer->matched_readers() >= 1 && cut_reader->matched_writers() >= 1);
@@ -268,15 +269,19 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
     // and the redundant copy of a step carries the same values. Checked whenever samples
     // were taken, before they are used.
     std::vector<std::uint64_t> next_step(readers.size(), 0);
-    // After a rollback a partner's stream starts again at the rollback's step (what it sent
-    // before may still be queued ahead of it), and a resumed node takes up a stream
-    // wherever it is: both are in sequence. Every copy of a step carries the same values.
+    // After a rollback to step K a partner's stream starts again at K: until the run has
+    // moved on (partition_exempt_until, set at the resume) a step from K up to the newest
+    // one seen is a repeat (the rolled-back stream, or a copy sent again, see
+    // `resend_since_rollback`), checked for equal values where still in use; outside that
+    // window a stream must go on one step after the other. A resumed node takes up a
+    // stream wherever it is.
     std::vector<bool> next_step_known(readers.size(), !resumed);
-    std::vector<std::uint64_t> rollback_steps;
-    if (resumed) rollback_steps.push_back(resumed->stepper.step);
+    std::optional<std::uint64_t> rollback_step;
+    if (resumed) rollback_step = resumed->stepper.step;
+    Clock::time_point partition_exempt_until{};
     auto in_sequence = [&](std::size_t e, std::uint64_t step) {
-      return !next_step_known[e] || step == next_step[e] ||
-             std::find(rollback_steps.begin(), rollback_steps.end(), step) != rollback_steps.end();
+      if (!next_step_known[e] || step == next_step[e]) return true;
+      return rollback_step && step >= *rollback_step && step < next_step[e] && Clock::now() < partition_exempt_until;
     };
     // The message names the writers the reader is matched with: the intruder among them.
     auto foreign = [&](const transport::SampleReader* r, const std::string& topic, const std::string& from, const std::string& what) {
@@ -352,7 +357,7 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
           if (h.run_id != options.run_id) continue;
           if (!in_sequence(e, h.step))
             foreign(readers[e].get(), edge.topic, edge.from, "step " + std::to_string(h.step) + " arrived where step " + std::to_string(next_step[e]) + " was due");
-          next_step[e] = h.step + 1;
+          next_step[e] = next_step_known[e] ? std::max(next_step[e], h.step + 1) : h.step + 1;
           next_step_known[e] = true;
           check_plausible(e, h, received);
           if (h.step + 2 >= stepper.step() && !stepper.channel(e).add(h.step, received))
@@ -378,12 +383,62 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
       }
       if (took) hold_for_second_writer();
     };
+    // --- sending again after a rollback ---
+    // A restarted node's writers and readers are new to its partners, and DDS discovery
+    // completes on each side on its own: a sample written before the other side matched a
+    // writer never arrives (VOLATILE), and lock step would wait for it for good (seen in
+    // CI). So until the run has moved on (partition_exempt_until) a node keeps what it
+    // wrote since the rollback and writes it again whenever it has waited
+    // kResendAfterStall without taking a step; receivers take the copies as repeats
+    // (in_sequence). A lost sample stalls its receiver, and in a loop of partners that
+    // stall reaches the sender.
+    struct SentSample {
+      bool prediction;  // the cut topic, else the node's own topic
+      transport::SampleHeader header;
+      std::vector<double> values;
+    };
+    std::vector<SentSample> sent_since_rollback;
+    constexpr std::size_t kSentKept = 64;  // the newest; partners in lock step are a step or two apart
+    constexpr auto kResendAfterStall = std::chrono::milliseconds(100);
+    Clock::time_point last_step_taken = Clock::now(), last_resend{};
+    auto keep_sent = [&](bool prediction, const transport::SampleHeader& h, const std::vector<double>& v) {
+      if (Clock::now() >= partition_exempt_until) return;
+      if (sent_since_rollback.size() == kSentKept) sent_since_rollback.erase(sent_since_rollback.begin());
+      sent_since_rollback.push_back({prediction, h, v});
+    };
+    auto resend_since_rollback = [&] {
+      const auto now = Clock::now();
+      if (sent_since_rollback.empty() || now >= partition_exempt_until || now - last_step_taken < kResendAfterStall ||
+          now - last_resend < kResendAfterStall)
+        return;
+      if (last_resend < last_step_taken)  // once per stall in the log
+        std::printf("rollback: no step for %.2f s at step %llu: %zu sample(s) sent since the rollback sent again\n",
+                    std::chrono::duration<double>(now - last_step_taken).count(), static_cast<unsigned long long>(stepper.step()),
+                    sent_since_rollback.size());
+      last_resend = now;
+      for (const SentSample& s : sent_since_rollback) {
+        transport::SampleWriter& w = s.prediction ? *cut_writer : *writer;
+        transport::SampleWriter* twin = s.prediction ? twin_cut_writer.get() : twin_writer.get();
+        w.write(s.header, s.values);
+        if (twin) twin->write(s.header, s.values);
+      }
+    };
+    // Test hook (restart_test): MECHSIM_TEST_LOSE_RESTORED_SAMPLE=NODE makes NODE leave out
+    // its first writes after a resume (the restored step's sample and the first prediction),
+    // as a partner that had not yet matched its writers would miss them.
+    const char* lose_hook = std::getenv("MECHSIM_TEST_LOSE_RESTORED_SAMPLE");
+    const bool lose_restored_sample = lose_hook && node_name == lose_hook;
+    bool lose_next_prediction = false;
     std::vector<double> prediction;
     auto predict_if_due = [&] {
       if (!stepper.prediction_due()) return;
       stepper.predict(prediction);
-      cut_writer->write({options.run_id, stepper.step(), stepper.time()}, prediction);
-      if (twin_cut_writer) twin_cut_writer->write({options.run_id, stepper.step(), stepper.time()}, prediction);
+      const transport::SampleHeader h{options.run_id, stepper.step(), stepper.time()};
+      if (!std::exchange(lose_next_prediction, false)) {
+        cut_writer->write(h, prediction);
+        if (twin_cut_writer) twin_cut_writer->write(h, prediction);
+      }
+      keep_sent(true, h, prediction);
     };
     std::optional<transport::ControlMessage> pending_rollback;
     auto check_control = [&] {
@@ -439,6 +494,7 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
       if (pacer) pacer->wait_for_deadline(header.step, rt.spin_wait ? rt.spin_limit : 0.0);
       writer->write(header, values);
       if (twin_writer) twin_writer->write(header, values);
+      keep_sent(false, header, values);
       if (pacer) pace(header.step);
       if (log) log->append(header.t, stepper.outputs());
       beat.status().header.step = header.step;
@@ -449,8 +505,8 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
     // --- restart with rollback (checkpoint.h, docs/faults.md) ---
     bool announce_step = false;  // after a resume: the first step taken goes to the launcher at once
     // After a resume the partners of a restarted node hold while its dead writer lingers
-    // (its lease, under kForeignWriterGrace): a wait that long is no partition.
-    Clock::time_point partition_exempt_until{};
+    // (its lease, under kForeignWriterGrace): a wait that long is no partition
+    // (partition_exempt_until, declared with the sequence check above).
     auto write_node_checkpoint = [&] {
       log->flush();
       std::int64_t events_bytes = 0;
@@ -468,17 +524,26 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
       stepper.restore(c.stepper, values);
       guard.restore(c.guard);
       initialised = true;
-      if (std::find(rollback_steps.begin(), rollback_steps.end(), c.stepper.step) == rollback_steps.end())
-        rollback_steps.push_back(c.stepper.step);
+      rollback_step = c.stepper.step;
       header.step = stepper.step();
       header.t = stepper.time();
       beat.status().header.step = header.step;
       beat.status().header.t = header.t;
     };
-    // The restored step's samples once more: the partners rolled back as well and need them.
-    auto republish = [&] {
-      writer->write(header, values);
-      if (twin_writer) twin_writer->write(header, values);
+    // The run goes on from the restored step: its samples once more (the partners rolled
+    // back as well and need them), kept for sending again, and the first step taken
+    // reported at once.
+    auto go_on_after_rollback = [&] {
+      partition_exempt_until = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(kForeignWriterGrace));
+      sent_since_rollback.clear();
+      last_step_taken = Clock::now();
+      lose_next_prediction = lose_restored_sample && cut_writer;
+      if (!lose_restored_sample) {
+        writer->write(header, values);
+        if (twin_writer) twin_writer->write(header, values);
+      }
+      keep_sent(false, header, values);
+      announce_step = true;
     };
     // Waits (heartbeats only, no sample taken) for the resume of `generation`; false when
     // the run is stopped meanwhile.
@@ -505,17 +570,13 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
       if (!await_resume()) return false;
       beat.status().message.clear();
       beat.set_state(transport::NodeState::running);
-      republish();
-      announce_step = true;
-      partition_exempt_until = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(kForeignWriterGrace));
+      go_on_after_rollback();
       return true;
     };
     if (resumed) {
       apply_checkpoint(*resumed);
       std::printf("resumed: from step %llu (generation %d)\n", static_cast<unsigned long long>(header.step), generation);
-      republish();
-      announce_step = true;
-      partition_exempt_until = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(kForeignWriterGrace));
+      go_on_after_rollback();
     }
     bool has_gauss_seidel_input = false;
     for (const auto& edge : node.inputs) has_gauss_seidel_input = has_gauss_seidel_input || edge.order == config::EdgeOrder::gauss_seidel;
@@ -564,6 +625,7 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
       while (initialised && stepper.can_step() && !second_writer_since) {  // a drain below may start a hold
         stepper.step(values);
         publish();
+        last_step_taken = Clock::now();
         if (std::exchange(announce_step, false)) beat.send();
         stepper.take_events();  // the block's own event log below says what they meant
         for (const auto& ev : node.block->take_event_log()) log_event(ev, events_file);
@@ -583,6 +645,7 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
       }
       if (second_writer_since) waiting_since = Clock::now();  // a hold is not a partition
       check_partition();
+      resend_since_rollback();
       copy_stats(stepper.solver_stats(), beat.status());
       if (pacer && beat.until_next().count() == 0) {  // the figures walk the histogram: heartbeat pace only
         const RealtimeFigures f = pacer->figures();

@@ -167,6 +167,10 @@ ScenePlan ScenePlan::build(const config::Scene& scene) {
     to.inputs.push_back(std::move(edge));
     ++from.subscriber_count;
   }
+  // The launcher's recorder reads too: a node starts only once its writer has matched it,
+  // or the recording could miss the first steps (a match is seen by each side on its own).
+  if (scene.record)
+    for (auto& node : plan.nodes_) node.recorded = scene.record->records(node.topic);
 
   // Required inputs must be connected.
   for (const auto& node : plan.nodes_) {

@@ -145,6 +145,7 @@ class CycloneSampleWriter final : public SampleWriter {
     if (rc != DDS_RETCODE_OK) fail("write " + type_.type->idl_name, rc);
   }
   int matched_readers() const override { return partner_readers_matched(writer_); }
+  int matched_readers_including_tools() const override { return publication_matched(writer_); }
   void flush(std::chrono::nanoseconds timeout) override { dds_wait_for_acks(writer_, timeout.count()); }
 
  private:

@@ -259,6 +259,7 @@ class FastSampleWriter final : public SampleWriter, Endpoint {
   int matched_readers() const override {
     return std::max(0, publication_matched(writer_) - core_->tool_readers.on_topic(writer_->get_topic()->get_name()));
   }
+  int matched_readers_including_tools() const override { return publication_matched(writer_); }
   // Waits at most 1 s, whatever the caller allows: Fast DDS 2.9 does not act on Cyclone
   // DDS's disposal of a reader or participant (measured: a Fast DDS writer still counts a
   // Cyclone reader whose process has exited as matched until the Cyclone lease expires,

@@ -137,6 +137,10 @@ struct FaultsSpec {
   std::string key_path = "faults";
 };
 
+// A topic chosen by exact names or an ECMAScript regex over the whole name; neither given:
+// every topic. One rule for `record:` and the recorder's selection.
+bool topic_selected(const std::vector<std::string>& names, const std::string& regex, const std::string& topic);
+
 // `record:` — the launcher records the run's topics into an MCAP file (docs/recording.md).
 // `record: true` takes every default.
 struct RecordSpec {
@@ -144,6 +148,7 @@ struct RecordSpec {
   std::vector<std::string> topics;       // exact topic names; none and no regex: every topic
   std::string regex;                     // ECMAScript, matches the whole topic name
   std::string compression = "zstd";      // zstd | lz4 | none
+  bool records(const std::string& topic) const { return topic_selected(topics, regex, topic); }
 };
 
 struct Scene {

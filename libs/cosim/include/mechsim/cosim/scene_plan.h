@@ -49,6 +49,7 @@ struct PlannedNode {
   std::vector<int> published_outputs;   // block output index of each topic field, -1: not computed (NaN)
   std::vector<InboundEdge> inputs;
   int subscriber_count = 0;             // participants that read `topic`
+  bool recorded = false;                // the launcher's recorder reads `topic` too (scene `record:`)
   std::optional<PlannedCut> cut;        // interface-Jacobian cut, if this node is on one
   const std::string& name() const { return spec->name; }
 };

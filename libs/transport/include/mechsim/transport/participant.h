@@ -30,6 +30,9 @@ class SampleWriter {
   // Readers matched with this writer, not counting mechsim tools' readers (recorder,
   // `topic echo`; they carry USER_DATA "mechsim:tool", raw.h): what readiness waits for.
   virtual int matched_readers() const = 0;
+  // Every matched reader, tools' readers included (the launcher's recorder must have
+  // matched before a recorded run starts).
+  virtual int matched_readers_including_tools() const { return matched_readers(); }
   // Waits until every matched reader acknowledged what was written (before a node exits).
   virtual void flush(std::chrono::nanoseconds timeout) = 0;
 };
