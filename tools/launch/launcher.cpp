@@ -19,6 +19,7 @@
 
 #include "agent_client.h"
 #include "domain_lock.h"
+#include "domain_readers.h"
 #include "hosts.h"
 #include "mechsim/config/scene.h"
 #include "mechsim/cosim/checkpoint.h"
@@ -129,6 +130,7 @@ class Run {
   bool tty_ = false;
   std::map<std::string, std::string> replay_tables_;  // node -> table its process replays
   std::unique_ptr<RunRecording> recording_;
+  std::unique_ptr<DomainReaders> domain_readers_;  // who reads the nodes' topics (a user's recorder)
   std::map<std::string, std::vector<std::string>> node_args_;  // local nodes: their command line
   std::map<std::string, int> restarts_;                          // per node
   std::vector<RestartRecord> restart_log_;
@@ -438,6 +440,30 @@ RunOutcome Run::run_nodes() {
     fail(out, "", "the recorder's readers did not match the nodes' writers within 10 s");
     return out;
   }
+  // Every reader on the domain (a recorder the user started first) matched by the writer
+  // it reads: each node reports how many it has matched (docs/recording.md).
+  for (const auto since = Clock::now();;) {
+    take_status();
+    check_exits(false);
+    if (!out.reason.empty()) return out;
+    std::string late;
+    for (const auto& node : plan_.nodes()) {
+      const int readers = domain_readers_->on_topic(node.topic, node.type->publishes->idl_name);
+      const transport::StatusMessage& s = watch_.at(node.name()).last;
+      if (s.readers_matched < readers)
+        late += (late.empty() ? "" : ", ") + node.name() + " (" + std::to_string(s.readers_matched) + " of " + std::to_string(readers) + ")";
+    }
+    if (late.empty()) break;
+    if (seconds_since(since) > 10.0) {
+      const std::string why = "the nodes' writers did not match every reader on the domain within 10 s: " + late +
+                              "; a recorder may miss the first steps";
+      std::fprintf(stderr, "mechsim: warning: %s\n", why.c_str());
+      warnings_.push_back(why);
+      break;
+    }
+    if (g_interrupt) break;
+    participant_->wait(std::chrono::milliseconds(2));
+  }
 
   // 2. Start, then watch until every node is done.
   const bool realtime = scene_.mode == "realtime";
@@ -710,6 +736,7 @@ int Run::execute() {
     std::fprintf(stderr, "mechsim: DDS security: %s (authentication, access control, encryption; docs/security.md)\n",
                  scene_.security_dir.c_str());
   participant_ = transport::create_participant(scene_.vendor, domain_);
+  domain_readers_ = std::make_unique<DomainReaders>(domain_);  // discovers while the nodes start
   control_ = participant_->create_control_writer();
   status_ = participant_->create_status_reader();
   if (hosts_.multi_host) {

@@ -239,6 +239,9 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
     while (!started) {
       if (stop_requested()) return 3;
       if (Clock::now() > deadline) throw std::runtime_error("no start command within the start timeout");
+      // For the launcher: it starts the run once every reader on the domain, a recorder of
+      // the user's included, is matched with this writer (docs/recording.md).
+      beat.status().readers_matched = writer->matched_readers_including_tools();
       if (!ready && matched()) {
         ready = true;
         beat.set_state(transport::NodeState::ready);

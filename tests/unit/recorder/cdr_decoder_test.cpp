@@ -90,8 +90,8 @@ TEST(CdrDecoder, StatusWithStringsAndIntegers) {
   // idl/status.idl, XCDR1 LE. node "follower" (length 9 with the NUL) at 24, chars 28..36;
   // state (long) at 40; wall_time at 48; five long longs 56..88; last_step_size 96;
   // last_order 104; lateness_max 112, lateness_p99 120, missed_deadlines 128, rtf_window
-  // 136; message length at 144, chars from 148.
-  Buffer b(0x0001, 148 + 4, false);
+  // 136; readers_matched (long) 144; message length at 148, chars from 152.
+  Buffer b(0x0001, 152 + 4, false);
   put_header(b);
   b.put_string(24, "follower");
   b.put<std::int32_t>(40, 2);
@@ -103,7 +103,8 @@ TEST(CdrDecoder, StatusWithStringsAndIntegers) {
   b.put<double>(120, 0.25e-3);
   b.put<std::int64_t>(128, 17);
   b.put<double>(136, 0.97);
-  b.put_string(144, "a\"b");
+  b.put<std::int32_t>(144, 4);
+  b.put_string(148, "a\"b");
   const MessageLayout& l = *find_layout("mechsim::msg::Status");
   const DecodedSample s = decode_sample(b.bytes(), l);
   expect_header(s.header);
@@ -118,6 +119,7 @@ TEST(CdrDecoder, StatusWithStringsAndIntegers) {
   EXPECT_EQ(std::get<double>(s.values[l.field_index("lateness_p99")]), 0.25e-3);
   EXPECT_EQ(std::get<std::int64_t>(s.values[l.field_index("missed_deadlines")]), 17);
   EXPECT_EQ(std::get<double>(s.values[l.field_index("rtf_window")]), 0.97);
+  EXPECT_EQ(std::get<std::int64_t>(s.values[l.field_index("readers_matched")]), 4);
   EXPECT_EQ(std::get<std::string>(s.values[l.field_index("message")]), "a\"b");
 }
 

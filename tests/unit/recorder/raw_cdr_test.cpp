@@ -114,6 +114,7 @@ TEST_F(RawCdr, ControlAndStatusDecodeToWhatWasWritten) {
   m.lateness_max = 2e-3;
   m.missed_deadlines = 11;
   m.rtf_window = 0.875;
+  m.readers_matched = 3;
   m.message = "diverged: x";
   ASSERT_TRUE(wait_until(*raw_, [&] {
     status->write(m);  // best effort: repeat until one arrives
@@ -136,6 +137,7 @@ TEST_F(RawCdr, ControlAndStatusDecodeToWhatWasWritten) {
   EXPECT_EQ(std::get<double>(d.values[sl.field_index("lateness_max")]), 2e-3);
   EXPECT_EQ(std::get<std::int64_t>(d.values[sl.field_index("missed_deadlines")]), 11);
   EXPECT_EQ(std::get<double>(d.values[sl.field_index("rtf_window")]), 0.875);
+  EXPECT_EQ(std::get<std::int64_t>(d.values[sl.field_index("readers_matched")]), 3);
   EXPECT_EQ(std::get<std::string>(d.values[sl.field_index("message")]), "diverged: x");
 }
 

@@ -257,6 +257,7 @@ class CycloneStatusWriter final : public StatusWriter {
     s.lateness_p99 = m.lateness_p99;
     s.missed_deadlines = m.missed_deadlines;
     s.rtf_window = m.rtf_window;
+    s.readers_matched = m.readers_matched;
     copy_bounded(s.message, sizeof s.message, m.message);
     dds_write(writer_, &s);  // best effort: a lost heartbeat is harmless
   }
@@ -288,6 +289,7 @@ class CycloneStatusReader final : public StatusReader {
     m.lateness_p99 = s.lateness_p99;
     m.missed_deadlines = s.missed_deadlines;
     m.rtf_window = s.rtf_window;
+    m.readers_matched = s.readers_matched;
     m.message = s.message;
     return m;
   }

@@ -382,6 +382,7 @@ class FastStatusWriter final : public StatusWriter, Endpoint {
     s.lateness_p99(m.lateness_p99);
     s.missed_deadlines(m.missed_deadlines);
     s.rtf_window(m.rtf_window);
+    s.readers_matched(m.readers_matched);
     s.message(message);
     writer_->write(&s);  // best effort: a lost heartbeat is harmless
   }
@@ -414,6 +415,7 @@ class FastStatusReader final : public StatusReader, Endpoint {
     m.lateness_p99 = s.lateness_p99();
     m.missed_deadlines = s.missed_deadlines();
     m.rtf_window = s.rtf_window();
+    m.readers_matched = s.readers_matched();
     m.message = s.message().to_string();
     return m;
   }

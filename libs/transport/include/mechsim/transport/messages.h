@@ -58,6 +58,9 @@ struct StatusMessage {
   double lateness_p99 = 0.0;   // s
   std::int64_t missed_deadlines = 0;
   double rtf_window = 0.0;     // achieved real-time factor over the last second
+  // Readers matched with the node's data writer, tools' readers included: the launcher
+  // starts a run once each node has matched every reader on the domain (docs/recording.md).
+  std::int32_t readers_matched = 0;
   std::string message;  // last error (at most 256 characters on the wire)
 };
 
