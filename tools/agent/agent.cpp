@@ -24,6 +24,7 @@
 #include "mechsim/transport/network_config.h"
 #include "node_processes.h"
 #include "paths.h"
+#include "elapsed.h"
 
 namespace mechsim::agent {
 
@@ -36,7 +37,6 @@ namespace {
 std::atomic<int> g_stop{0};
 void on_signal(int sig) { g_stop.store(sig); }
 
-double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 void log_line(const std::string& text) {
   std::fprintf(stderr, "mechsim agent: %s\n", text.c_str());

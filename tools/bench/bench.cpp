@@ -31,6 +31,7 @@
 #include "reference_accuracy.h"
 #include "run_report.h"
 #include "signal_compare.h"
+#include "elapsed.h"
 
 namespace mechsim::bench {
 
@@ -42,7 +43,6 @@ namespace {
 
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 // "250 us", "1 ms", "2.5 ms": exact enough for the scene grammar (9 significant digits).
 std::string time_text(double s) {

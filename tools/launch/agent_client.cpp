@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "agent_protocol.h"
+#include "elapsed.h"
 
 namespace mechsim::launch {
 
@@ -15,7 +16,6 @@ using agent::AgentKind;
 
 namespace {
 
-double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 // A name an agent may write into the run folder: no path, no hidden file.
 bool plain_file_name(const std::string& name) {

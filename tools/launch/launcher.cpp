@@ -44,6 +44,7 @@
 #include "provenance.h"
 #include "realtime_report.h"
 #include "reference_accuracy.h"
+#include "elapsed.h"
 
 namespace mechsim::launch {
 
@@ -60,7 +61,6 @@ void on_interrupt(int sig) { g_interrupt.store(sig); }
 // the participants forget each other (what was written meanwhile would be lost for good).
 double lease_for(const config::Scene& scene) { return scene.faults.partition_grace + 3.0; }
 
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 std::string hex_id(std::uint64_t id) {
   char buf[17];
@@ -335,11 +335,8 @@ RunOutcome Run::run_nodes() {
     for (const auto& p : processes_.processes()) names.push_back(p.name);
     const auto common = cosim::common_checkpoint(run_dir_, names);
     const std::string dead = to_restart.front();
-    NodeProcess* first = nullptr;
-    for (auto& p : processes_.processes())
-      if (p.name == dead) first = &p;
     if (!common) {
-      fail(out, dead, "node '" + dead + "' " + first->describe_exit() + " before every node held a checkpoint (the first is at step " +
+      fail(out, dead, "node '" + dead + "' " + processes_.find(dead).describe_exit() + " before every node held a checkpoint (the first is at step " +
                           std::to_string(scene_.faults.checkpoint_every) + ", faults.checkpoint_every): no restart");
       return;
     }
@@ -347,8 +344,7 @@ RunOutcome Run::run_nodes() {
     for (const auto& name : to_restart) {
       RestartRecord r;
       r.node = name;
-      for (auto& p : processes_.processes())
-        if (p.name == name) r.exit = p.describe_exit();
+      r.exit = processes_.find(name).describe_exit();
       r.last_step = last_step_of(name);
       r.rollback_step = *common;
       r.generation = generation;

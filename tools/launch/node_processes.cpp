@@ -166,4 +166,10 @@ void NodeProcesses::stop_all(double grace_s) {
     }
 }
 
+NodeProcess& NodeProcesses::find(const std::string& name) {
+  for (auto& p : processes_)
+    if (p.name == name) return p;
+  throw std::logic_error("no node process named '" + name + "'");
+}
+
 }  // namespace mechsim::launch

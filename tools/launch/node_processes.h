@@ -45,6 +45,8 @@ class NodeProcesses {
   // SIGTERM to all running, wait up to `grace_s`, then SIGKILL and reap.
   void stop_all(double grace_s);
   std::vector<NodeProcess>& processes() { return processes_; }
+  // The process of node `name`; throws std::logic_error for a name that was never started.
+  NodeProcess& find(const std::string& name);
 
  private:
   pid_t spawn(const std::string& executable, const std::vector<std::string>& args, const std::string& log_path,

@@ -2,13 +2,12 @@
 
 #include <cstdlib>
 
+#include "hosts.h"
 #include "mechsim/transport/security.h"
 
 namespace mechsim::launch {
 
-namespace {
-constexpr const char* kLauncherIdentity = "launcher";  // = security::kLauncherIdentity (tools/security)
-}
+using transport::kLauncherIdentity;
 
 std::vector<std::string> security_problems(const config::Scene& scene) {
   std::vector<std::string> problems;
@@ -44,8 +43,7 @@ void configure_security_environment(const config::Scene& scene) {
     ::unsetenv(transport::kSecurityIdentityEnv);
     return;
   }
-  ::setenv(transport::kSecurityDirEnv, scene.security_dir.c_str(), 1);
-  ::setenv(transport::kSecurityIdentityEnv, kLauncherIdentity, 1);
+  set_environment(transport::security_environment({scene.security_dir, kLauncherIdentity}));
 }
 
 std::vector<std::string> node_security_environment(const config::Scene& scene, const std::string& node) {

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <thread>
 
+#include "elapsed.h"
 #include "cdr_decoder.h"
 #include "commands.h"
 #include "mechsim/transport/raw.h"
@@ -24,7 +25,6 @@ using Clock = std::chrono::steady_clock;
 std::atomic<int> g_signal{0};
 void on_signal(int sig) { g_signal.store(sig); }
 
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 bool valid_domain(int domain, const char* cmd) {
   if (domain >= 0 && domain <= 232) return true;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "mechsim/cosim/scene_plan.h"
+#include "mechsim/transport/security.h"
 
 namespace mechsim::security {
 
@@ -20,9 +21,9 @@ struct IdentityGrant {
   std::vector<std::string> subscribe;
 };
 
-// Identity names that are not a participant's.
-inline constexpr const char* kLauncherIdentity = "launcher";
-inline constexpr const char* kObserverIdentity = "observer";
+// Identity names that are not a participant's (transport/security.h).
+using transport::kLauncherIdentity;
+using transport::kObserverIdentity;
 
 // The grants a run of `plan` needs: one per participant, the launcher and the observer.
 // Throws config::ConfigError when a participant is named like one of the others.

@@ -19,6 +19,12 @@ namespace mechsim::transport {
 inline constexpr const char* kSecurityDirEnv = "MECHSIM_DDS_SECURITY";
 inline constexpr const char* kSecurityIdentityEnv = "MECHSIM_DDS_IDENTITY";
 
+// Identity names that are not a participant's: the launcher (publishes mechsim/control,
+// reads everything; its recorder shares it) and an observer (reads everything: `mechsim
+// record`, `mechsim topic`). `mechsim security init` makes both.
+inline constexpr const char* kLauncherIdentity = "launcher";
+inline constexpr const char* kObserverIdentity = "observer";
+
 struct SecurityIdentity {
   std::string dir;   // the security folder (absolute)
   std::string name;  // a scene participant, "launcher" or "observer"
