@@ -312,6 +312,11 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
     }
     if (cut_reader) watched.push_back({cut_reader.get(), node.cut->partner_topic, node.cut->partner});
     if (twin_cut_reader) watched.push_back({twin_cut_reader.get(), transport::redundant_topic(node.cut->partner_topic), node.cut->partner});
+    // After a rollback a restarted partner's dead writer lingers next to its new one until
+    // its lease runs out: expected, so no hold until the run has moved on
+    // (partition_exempt_until; the sequence and equal-value checks still apply), but it
+    // must be gone within the grace like any other.
+    auto holding = [&] { return second_writer_since.has_value() && Clock::now() >= partition_exempt_until; };
     // True while the node must hold; throws once a second writer outstayed the grace.
     auto hold_for_second_writer = [&] {
       const auto w = std::find_if(watched.begin(), watched.end(), [](const WatchedReader& r) { return r.reader->matched_writers() > 1; });
@@ -322,7 +327,7 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
       if (!second_writer_since) second_writer_since = Clock::now();
       if (std::chrono::duration<double>(Clock::now() - *second_writer_since).count() > kForeignWriterGrace)
         foreign(w->reader, w->topic, w->from, "more than one writer for " + std::to_string(static_cast<int>(kForeignWriterGrace)) + " s");
-      return true;
+      return holding();
     };
     // Fields the publisher does not compute are NaN by design (PlannedNode::published_outputs).
     std::vector<std::vector<int>> checked_fields(node.inputs.size());
@@ -625,7 +630,7 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
         initialised = true;
       }
       predict_if_due();
-      while (initialised && stepper.can_step() && !second_writer_since) {  // a drain below may start a hold
+      while (initialised && stepper.can_step() && !holding()) {  // a drain below may start a hold
         stepper.step(values);
         publish();
         last_step_taken = Clock::now();
@@ -646,7 +651,7 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
         if (!roll_back(command)) return 3;
         continue;
       }
-      if (second_writer_since) waiting_since = Clock::now();  // a hold is not a partition
+      if (holding()) waiting_since = Clock::now();  // a hold is not a partition
       check_partition();
       resend_since_rollback();
       copy_stats(stepper.solver_stats(), beat.status());
