@@ -120,6 +120,8 @@ TEST_F(Partition, ACutLongerThanTheGraceEndsTheRunNamingTheUnreachableHost) {
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_NE(r.output.find("unreachable"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("'slide' on host h3 (10.77.0.3)"), std::string::npos) << r.output;
+  // The files of the cut host's node are not waited for (30 s) once its agent is silent.
+  EXPECT_NE(r.output.find("the agent on 10.77.0.3 has been silent"), std::string::npos) << r.output;
   heal_host(3);
   // No node left on any host: host 1's died with the launcher's stop, host 2's was stopped
   // by its agent, host 3's ended on its own watchdog or its agent's heartbeat timeout.

@@ -1,5 +1,6 @@
 #include "agent_client.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -76,6 +77,7 @@ void AgentClient::start(const std::string& node, const std::string& address, con
 
 void AgentClient::handle(const transport::AgentMessage& m) {
   const auto kind = static_cast<AgentKind>(m.kind);
+  last_heard_[m.host] = Clock::now();
   if (kind == AgentKind::hello) {
     hello_[m.host] = m.text;
     return;
@@ -158,10 +160,14 @@ std::vector<std::string> AgentClient::collect(double timeout_s) {
   for (const auto& [node, address] : node_address_) addresses.insert(address);
   const auto t0 = Clock::now();
   auto last_ask = Clock::now() - std::chrono::hours(1);
+  auto silent_for = [&](const std::string& a) {
+    const auto it = last_heard_.find(a);
+    return it == last_heard_.end() ? seconds_since(t0) : std::min(seconds_since(it->second), seconds_since(t0));
+  };
   for (;;) {
     pump();
     bool all = true;
-    for (const auto& a : addresses) all = all && collected_.count(a);
+    for (const auto& a : addresses) all = all && (collected_.count(a) || silent_for(a) > kSilentAgentS);
     if (all) break;
     if (seconds_since(t0) > timeout_s) break;
     if (seconds_since(last_ask) > 2.0) {  // repeated: a request right after a stop may be lost
@@ -172,9 +178,15 @@ std::vector<std::string> AgentClient::collect(double timeout_s) {
     participant_.wait(std::chrono::milliseconds(20));
   }
   std::vector<std::string> missing;
-  for (const auto& a : addresses)
-    if (!collected_.count(a)) missing.push_back("the agent on " + a + " did not hand back its nodes' files within " +
-                                                std::to_string(static_cast<int>(timeout_s)) + " s");
+  for (const auto& a : addresses) {
+    if (collected_.count(a)) continue;
+    char silent[160];
+    std::snprintf(silent, sizeof silent, "the agent on %s has been silent for %.1f s (unreachable?): its nodes' files stay on that host",
+                  a.c_str(), silent_for(a));
+    missing.push_back(silent_for(a) > kSilentAgentS ? std::string(silent)
+                                                    : "the agent on " + a + " did not hand back its nodes' files within " +
+                                                          std::to_string(static_cast<int>(timeout_s)) + " s");
+  }
   stopped_ = true;  // collected: the agents forgot the run
   return missing;
 }

@@ -44,7 +44,10 @@ class AgentClient {
   void stop_all();
   // Asks every agent for the files its nodes wrote and writes them into the run folder.
   // Returns a line per agent that did not hand back in time (empty: all files are here).
+  // An agent silent for kSilentAgentS (it says hello every second: the network to its host
+  // is cut, or the host is down) is not waited for beyond that.
   std::vector<std::string> collect(double timeout_s);
+  static constexpr double kSilentAgentS = 3.0;
   // The agents' hello texts (JSON) by address, for the summary.
   const std::map<std::string, std::string>& agents() const { return hello_; }
 
@@ -58,6 +61,7 @@ class AgentClient {
   std::unique_ptr<transport::AgentWriter> requests_;
   std::unique_ptr<transport::AgentReader> replies_;
   std::map<std::string, std::string> hello_;  // address -> hello text
+  std::map<std::string, std::chrono::steady_clock::time_point> last_heard_;  // address -> last message
   struct PendingStart {
     std::string address, request;
     std::chrono::steady_clock::time_point sent;
