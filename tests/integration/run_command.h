@@ -71,18 +71,27 @@ inline CommandResult run(const std::vector<std::string>& argv, const std::string
 }
 
 // Pids of live processes whose command line contains `needle` (zombies excluded).
+// Never throws: processes end while /proc is read, so the scan uses the error_code
+// overloads and starts again when the directory changed under it (restart_test once caught
+// an exception here; launch_test's killed-launcher test once ended without reaching its
+// last step in a way that fits one).
 inline std::vector<pid_t> processes_mentioning(const std::string& needle) {
   std::vector<pid_t> found;
-  for (const auto& entry : std::filesystem::directory_iterator("/proc")) {
-    const std::string name = entry.path().filename();
-    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
-    std::string cmdline = slurp(entry.path() / "cmdline");
-    for (char& c : cmdline)
-      if (c == '\0') c = ' ';
-    std::string stat = slurp(entry.path() / "stat");
-    const bool zombie = stat.find(") Z ") != std::string::npos;
-    if (!zombie && cmdline.find(needle) != std::string::npos && std::stoi(name) != ::getpid())
-      found.push_back(std::stoi(name));
+  for (int attempt = 0; attempt < 5; ++attempt) {
+    found.clear();
+    std::error_code ec;
+    for (std::filesystem::directory_iterator it("/proc", ec), end; !ec && it != end; it.increment(ec)) {
+      const std::string name = it->path().filename();
+      if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+      std::string cmdline = slurp(it->path() / "cmdline");
+      for (char& c : cmdline)
+        if (c == '\0') c = ' ';
+      std::string stat = slurp(it->path() / "stat");
+      const bool zombie = stat.find(") Z ") != std::string::npos;
+      if (!zombie && cmdline.find(needle) != std::string::npos && std::stoi(name) != ::getpid())
+        found.push_back(std::stoi(name));
+    }
+    if (!ec) break;
   }
   return found;
 }
