@@ -58,6 +58,18 @@ pid_t node_pid(const fs::path& runs, const std::string& node) {
   return -1;
 }
 
+// The pid of `node`'s process once its output log holds more than `rows` rows (-1 when
+// that does not happen within 60 s).
+pid_t pid_once_past(const fs::path& runs, const fs::path& run, const std::string& node, long rows) {
+  const auto until = Clock::now() + std::chrono::seconds(60);
+  while (Clock::now() < until) {
+    const pid_t pid = node_pid(runs, node);
+    if (pid > 0 && rows_written(run, node) > rows) return pid;
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  return -1;
+}
+
 // Stops a launcher the test leaves early (a failed assertion): SIGTERM stops its nodes.
 struct StopOnExit {
   pid_t pid;
@@ -97,6 +109,21 @@ class Restart : public RunFolderTest {
       std::this_thread::sleep_for(std::chrono::milliseconds(5));
     }
     return {};
+  }
+  // nc_slide_loop_1ms for 1 s, undisturbed ("plain", waited for), then again ("killed",
+  // returned running) with restart on, a checkpoint every 100 steps, `more` arguments and
+  // the test hook `hook` = `value` in the environment of its launcher and nodes.
+  pid_t run_plain_then_start_killable(const std::vector<std::string>& more, const char* hook, const char* value) {
+    const std::vector<std::string> extra{"--end", "1 s"};
+    CommandResult plain = run(launch_args(scene_path("nc_slide_loop_1ms.yaml"), "plain", extra), log("plain"), 120);
+    EXPECT_EQ(plain.exit_code, 0) << plain.output;
+    std::vector<std::string> args = extra;
+    args.insert(args.end(), {"--set", "faults.restart=on_failure", "--set", "faults.checkpoint_every=100"});
+    args.insert(args.end(), more.begin(), more.end());
+    ::setenv(hook, value, 1);  // inherited by the launcher and its nodes
+    const pid_t launcher = spawn(launch_args(scene_path("nc_slide_loop_1ms.yaml"), "killed", args), log("killed"));
+    ::unsetenv(hook);
+    return launcher;
   }
   // Every node's output and events files of two runs, byte for byte.
   void expect_identical_outputs(const fs::path& a, const fs::path& b, const std::vector<std::string>& nodes) {
@@ -142,13 +169,7 @@ class Restart : public RunFolderTest {
     std::map<std::string, int> restarts_of;
     for (long target : targets) {
       const std::string node = nodes[node_dist(rng)];
-      const auto until = Clock::now() + std::chrono::seconds(60);
-      pid_t pid = -1;
-      while (Clock::now() < until) {
-        pid = node_pid(dir_ / "killed", node);
-        if (pid > 0 && rows_written(run, node) > target) break;
-        std::this_thread::sleep_for(std::chrono::milliseconds(2));
-      }
+      const pid_t pid = pid_once_past(dir_ / "killed", run, node, target);
       ASSERT_GT(pid, 0) << "node " << node << " did not reach step " << target << "\n" << slurp(log("killed"));
       // The log grows in whole buffers (and at each checkpoint): a random pause puts the
       // kill anywhere between two checkpoints.
@@ -193,16 +214,10 @@ TEST_F(Restart, PressLineSurvivesFiveKillsByteIdentical) {
 // A node killed while it writes a checkpoint: its previous checkpoint is whole, and the run
 // rolls back to the newest one every node holds completely.
 TEST_F(Restart, AKillDuringACheckpointRollsBackToThePreviousOne) {
-  const std::vector<std::string> extra{"--end", "1 s"};
-  CommandResult plain = run(launch_args(scene_path("nc_slide_loop_1ms.yaml"), "plain", extra), log("plain"), 120);
-  ASSERT_EQ(plain.exit_code, 0) << plain.output;
-  ::setenv("MECHSIM_TEST_CHECKPOINT_PAUSE", "slide:300:3", 1);  // inherited by the launcher and its nodes
-  std::vector<std::string> args = extra;
   // Recorded too: the recording keeps the first copy of each step (docs/faults.md, 'Recording').
-  args.insert(args.end(), {"--set", "faults.restart=on_failure", "--set", "faults.checkpoint_every=100", "--set", "record=true"});
-  const pid_t launcher = spawn(launch_args(scene_path("nc_slide_loop_1ms.yaml"), "killed", args), log("killed"));
+  const pid_t launcher = run_plain_then_start_killable({"--set", "record=true"}, "MECHSIM_TEST_CHECKPOINT_PAUSE", "slide:300:3");
   StopOnExit stop{launcher};
-  ::unsetenv("MECHSIM_TEST_CHECKPOINT_PAUSE");
+  ASSERT_FALSE(HasFailure());
   const fs::path run = wait_for_run_folder("killed");
   ASSERT_FALSE(run.empty());
   const fs::path temp = run / "checkpoints" / "slide.300.ckpt.tmp";
@@ -235,24 +250,12 @@ TEST_F(Restart, AKillDuringACheckpointRollsBackToThePreviousOne) {
 // here: tacho leaves out its first writes after the resume; the nodes that then wait send
 // what they wrote since the rollback again, and the run completes byte-identical.
 TEST_F(Restart, SamplesLostAtTheResumeAreSentAgain) {
-  const std::vector<std::string> extra{"--end", "1 s"};
-  CommandResult plain = run(launch_args(scene_path("nc_slide_loop_1ms.yaml"), "plain", extra), log("plain"), 120);
-  ASSERT_EQ(plain.exit_code, 0) << plain.output;
-  ::setenv("MECHSIM_TEST_LOSE_RESTORED_SAMPLE", "tacho", 1);  // inherited by the launcher and its nodes
-  std::vector<std::string> args = extra;
-  args.insert(args.end(), {"--set", "faults.restart=on_failure", "--set", "faults.checkpoint_every=100"});
-  const pid_t launcher = spawn(launch_args(scene_path("nc_slide_loop_1ms.yaml"), "killed", args), log("killed"));
+  const pid_t launcher = run_plain_then_start_killable({}, "MECHSIM_TEST_LOSE_RESTORED_SAMPLE", "tacho");
   StopOnExit stop{launcher};
-  ::unsetenv("MECHSIM_TEST_LOSE_RESTORED_SAMPLE");
+  ASSERT_FALSE(HasFailure());
   const fs::path run = wait_for_run_folder("killed");
   ASSERT_FALSE(run.empty());
-  const auto until = Clock::now() + std::chrono::seconds(60);
-  pid_t pid = -1;
-  while (Clock::now() < until) {
-    pid = node_pid(dir_ / "killed", "slide");
-    if (pid > 0 && rows_written(run, "slide") > 300) break;
-    std::this_thread::sleep_for(std::chrono::milliseconds(2));
-  }
+  const pid_t pid = pid_once_past(dir_ / "killed", run, "slide", 300);
   ASSERT_GT(pid, 0) << slurp(log("killed"));
   ::kill(pid, SIGKILL);
   CommandResult r = wait_for(launcher, log("killed"), 120);
@@ -274,13 +277,7 @@ TEST_F(Restart, MoreDeathsThanTheLimitStopTheRunCleanly) {
   const fs::path run = wait_for_run_folder("limit");
   ASSERT_FALSE(run.empty());
   for (int kill = 0; kill < 2; ++kill) {
-    const auto until = Clock::now() + std::chrono::seconds(60);
-    pid_t pid = -1;
-    while (Clock::now() < until) {
-      pid = node_pid(dir_ / "limit", "tacho");
-      if (pid > 0 && rows_written(run, "tacho") > 300) break;
-      std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    }
+    const pid_t pid = pid_once_past(dir_ / "limit", run, "tacho", 300);
     ASSERT_GT(pid, 0) << slurp(log("limit"));
     ::kill(pid, SIGKILL);
     if (kill == 0) {

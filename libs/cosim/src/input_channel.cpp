@@ -34,7 +34,11 @@ const std::vector<double>* InputChannel::find(std::uint64_t step) const {
 }
 
 bool InputChannel::ready_for_step(std::uint64_t k) const {
-  return find(order_ == config::EdgeOrder::gauss_seidel ? k + 1 : k) != nullptr;
+  // A Gauss-Seidel edge interpolates between k and k+1: both must be here. In a run's
+  // order k always comes first; after a restart a partner's step-k copy may be the one
+  // lost and sent again after k+1 (docs/faults.md).
+  if (order_ == config::EdgeOrder::gauss_seidel) return find(k + 1) != nullptr && find(k) != nullptr;
+  return find(k) != nullptr;
 }
 
 bool InputChannel::ready_for_initial() const {

@@ -300,6 +300,11 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
     // second writer that stays longer than kForeignWriterGrace is foreign.
     constexpr double kForeignWriterGrace = 4.0;  // s, above the 2 s lease of config/dds/
     std::optional<Clock::time_point> second_writer_since;
+    // After a resume a restarted partner's dead writer is expected to linger: it may take
+    // longer than the grace on a loaded machine (seen: more than 4 s with two busy loops
+    // on the two cores), so a second writer is tolerated until this time (resume + 10 s).
+    constexpr double kLingeringAfterResume = 10.0;  // s
+    Clock::time_point lingering_allowed_until{};
     // Every reader of a partner's samples, with the topic and the participant it expects.
     struct WatchedReader {
       const transport::SampleReader* reader;
@@ -313,10 +318,10 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
     if (cut_reader) watched.push_back({cut_reader.get(), node.cut->partner_topic, node.cut->partner});
     if (twin_cut_reader) watched.push_back({twin_cut_reader.get(), transport::redundant_topic(node.cut->partner_topic), node.cut->partner});
     // After a rollback a restarted partner's dead writer lingers next to its new one until
-    // its lease runs out: expected, so no hold until the run has moved on
-    // (partition_exempt_until; the sequence and equal-value checks still apply), but it
-    // must be gone within the grace like any other.
-    auto holding = [&] { return second_writer_since.has_value() && Clock::now() >= partition_exempt_until; };
+    // its lease runs out: expected, so no hold and no failure until
+    // lingering_allowed_until (the sequence and equal-value checks still apply); after that
+    // a second writer is one like any other.
+    auto holding = [&] { return second_writer_since.has_value() && Clock::now() >= lingering_allowed_until; };
     // True while the node must hold; throws once a second writer outstayed the grace.
     auto hold_for_second_writer = [&] {
       const auto w = std::find_if(watched.begin(), watched.end(), [](const WatchedReader& r) { return r.reader->matched_writers() > 1; });
@@ -325,7 +330,8 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
         return false;
       }
       if (!second_writer_since) second_writer_since = Clock::now();
-      if (std::chrono::duration<double>(Clock::now() - *second_writer_since).count() > kForeignWriterGrace)
+      if (std::chrono::duration<double>(Clock::now() - *second_writer_since).count() > kForeignWriterGrace &&
+          Clock::now() >= lingering_allowed_until)
         foreign(w->reader, w->topic, w->from, "more than one writer for " + std::to_string(static_cast<int>(kForeignWriterGrace)) + " s");
       return holding();
     };
@@ -543,6 +549,7 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
     // reported at once.
     auto go_on_after_rollback = [&] {
       partition_exempt_until = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(kForeignWriterGrace));
+      lingering_allowed_until = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(kLingeringAfterResume));
       sent_since_rollback.clear();
       last_step_taken = Clock::now();
       lose_next_prediction = lose_restored_sample && cut_writer;
