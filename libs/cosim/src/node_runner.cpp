@@ -272,19 +272,19 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
     // and the redundant copy of a step carries the same values. Checked whenever samples
     // were taken, before they are used.
     std::vector<std::uint64_t> next_step(readers.size(), 0);
-    // After a rollback to step K a partner's stream starts again at K: until the run has
-    // moved on (partition_exempt_until, set at the resume) a step from K up to the newest
-    // one seen is a repeat (the rolled-back stream, or a copy sent again, see
-    // `resend_since_rollback`), checked for equal values where still in use; outside that
-    // window a stream must go on one step after the other. A resumed node takes up a
-    // stream wherever it is.
+    // After a rollback to step K a partner's stream starts again at K: for a while after the
+    // resume (repeats_accepted_until, longer than the partners send copies: their
+    // partition_exempt_until) a step from K up to the newest one seen is a repeat (the
+    // rolled-back stream, or a copy sent again, see `resend_since_rollback`), checked for
+    // equal values where still in use; otherwise a stream must go on one step after the
+    // other. A resumed node takes up a stream wherever it is.
     std::vector<bool> next_step_known(readers.size(), !resumed);
     std::optional<std::uint64_t> rollback_step;
     if (resumed) rollback_step = resumed->stepper.step;
-    Clock::time_point partition_exempt_until{};
+    Clock::time_point partition_exempt_until{}, repeats_accepted_until{};
     auto in_sequence = [&](std::size_t e, std::uint64_t step) {
       if (!next_step_known[e] || step == next_step[e]) return true;
-      return rollback_step && step >= *rollback_step && step < next_step[e] && Clock::now() < partition_exempt_until;
+      return rollback_step && step >= *rollback_step && step < next_step[e] && Clock::now() < repeats_accepted_until;
     };
     // The message names the writers the reader is matched with: the intruder among them.
     auto foreign = [&](const transport::SampleReader* r, const std::string& topic, const std::string& from, const std::string& what) {
@@ -550,6 +550,7 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
     auto go_on_after_rollback = [&] {
       partition_exempt_until = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(kForeignWriterGrace));
       lingering_allowed_until = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(kLingeringAfterResume));
+      repeats_accepted_until = lingering_allowed_until;
       sent_since_rollback.clear();
       last_step_taken = Clock::now();
       lose_next_prediction = lose_restored_sample && cut_writer;
