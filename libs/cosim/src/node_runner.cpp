@@ -369,8 +369,17 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
         while (readers[e]->take(h, received)) {
           took = true;
           if (h.run_id != options.run_id) continue;
-          if (!in_sequence(e, h.step))
-            foreign(readers[e].get(), edge.topic, edge.from, "step " + std::to_string(h.step) + " arrived where step " + std::to_string(next_step[e]) + " was due");
+          if (!in_sequence(e, h.step)) {
+            // A step ahead of the one due, from the one writer the plan expects: the DDS
+            // layer skipped a sample of its reliable stream (seen under 5 % loss between
+            // Fast DDS and Cyclone at the start of a run); the step due comes from the
+            // redundant copy or the run stalls and ends at the partition grace. Anything
+            // else out of order is foreign.
+            if (!(h.step > next_step[e] && readers[e]->matched_writers() == 1))
+              foreign(readers[e].get(), edge.topic, edge.from, "step " + std::to_string(h.step) + " arrived where step " + std::to_string(next_step[e]) + " was due");
+            std::printf("warning: topic '%s': step %llu arrived where step %llu was due (one writer matched): the reliable stream skipped; taking it\n",
+                        edge.topic.c_str(), static_cast<unsigned long long>(h.step), static_cast<unsigned long long>(next_step[e]));
+          }
           next_step[e] = next_step_known[e] ? std::max(next_step[e], h.step + 1) : h.step + 1;
           next_step_known[e] = true;
           check_plausible(e, h, received);
