@@ -12,11 +12,10 @@ DomainReaders::DomainReaders(int domain) {
   }
 }
 
-int DomainReaders::on_topic(const std::string& topic, const std::string& type_name) {
-  if (!participant_) return 0;
-  int readers = 0;
-  for (const auto& t : participant_->discovered_topics())
-    if (t.name == topic && t.type_name == type_name) readers += t.subscribers;
+std::map<std::pair<std::string, std::string>, int> DomainReaders::by_topic_and_type() {
+  std::map<std::pair<std::string, std::string>, int> readers;
+  if (!participant_) return readers;
+  for (const auto& t : participant_->discovered_topics()) readers[{t.name, t.type_name}] += t.subscribers;
   return readers;
 }
 

@@ -9,8 +9,10 @@
 // readers (Status.readers_matched). docs/recording.md, 'From the first step'.
 #pragma once
 
+#include <map>
 #include <memory>
 #include <string>
+#include <utility>
 
 #include "mechsim/transport/raw.h"
 
@@ -23,9 +25,9 @@ class DomainReaders {
   // counted and nothing waited for.
   explicit DomainReaders(int domain);
   bool available() const { return participant_ != nullptr; }
-  // Readers of `topic` with type `type_name` (a reader of another type never matches) of
-  // other participants on the domain, as discovered so far.
-  int on_topic(const std::string& topic, const std::string& type_name);
+  // Readers of other participants on the domain as discovered so far, by topic and type
+  // (a reader of another type never matches): one discovery snapshot per call.
+  std::map<std::pair<std::string, std::string>, int> by_topic_and_type();
   const std::string& problem() const { return problem_; }
 
  private:

@@ -443,8 +443,10 @@ RunOutcome Run::run_nodes() {
     check_exits(false);
     if (!out.reason.empty()) return out;
     std::string late;
+    const auto domain_readers = domain_readers_->by_topic_and_type();
     for (const auto& node : plan_.nodes()) {
-      const int readers = domain_readers_->on_topic(node.topic, node.type->publishes->idl_name);
+      const auto found = domain_readers.find({node.topic, node.type->publishes->idl_name});
+      const int readers = found == domain_readers.end() ? 0 : found->second;
       const transport::StatusMessage& s = watch_.at(node.name()).last;
       if (s.readers_matched < readers)
         late += (late.empty() ? "" : ", ") + node.name() + " (" + std::to_string(s.readers_matched) + " of " + std::to_string(readers) + ")";

@@ -163,6 +163,15 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
       }
       return true;
     };
+    // The next command of this run (nullopt: none waiting), and whether it ends the run.
+    auto next_command = [&]() -> std::optional<transport::ControlMessage> {
+      while (auto c = control->take())
+        if (command_for_this_run(*c)) return c;
+      return std::nullopt;
+    };
+    auto ends_the_run = [](const transport::ControlMessage& c) {
+      return c.command == transport::ControlCommand::abort || c.command == transport::ControlCommand::stop;
+    };
     auto writer = participant.create_writer(node.topic, *node.type->publishes);
     std::vector<std::unique_ptr<transport::SampleReader>> readers;
     for (const auto& edge : node.inputs) readers.push_back(participant.create_reader(edge.topic, *edge.type));
@@ -246,9 +255,8 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
         ready = true;
         beat.set_state(transport::NodeState::ready);
       }
-      while (auto c = control->take()) {
-        if (!command_for_this_run(*c)) continue;
-        if (c->command == transport::ControlCommand::abort || c->command == transport::ControlCommand::stop) return 3;
+      while (auto c = next_command()) {
+        if (ends_the_run(*c)) return 3;
         if (c->command != awaited || c->generation != generation) continue;  // e.g. the rollback a resumed node is part of
         started = ready;
         start_message = *c;
@@ -272,19 +280,31 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
     // and the redundant copy of a step carries the same values. Checked whenever samples
     // were taken, before they are used.
     std::vector<std::uint64_t> next_step(readers.size(), 0);
-    // After a rollback to step K a partner's stream starts again at K: for a while after the
-    // resume (repeats_accepted_until, longer than the partners send copies: their
-    // partition_exempt_until) a step from K up to the newest one seen is a repeat (the
-    // rolled-back stream, or a copy sent again, see `resend_since_rollback`), checked for
-    // equal values where still in use; otherwise a stream must go on one step after the
-    // other. A resumed node takes up a stream wherever it is.
+    // A second writer: hold (use no sample) while it lasts; a writer of a process that died
+    // lingers until its DDS lease runs out (2 s; a domain is reused by later runs), so only a
+    // second writer that stays longer than kForeignWriterGrace is foreign.
+    constexpr double kForeignWriterGrace = 4.0;  // s, above the 2 s lease of config/dds/
+    // After a rollback's resume (resumed_at; none: never rolled back) the protocol is
+    // lenient for a while, each window counted from the resume:
+    //  - kForeignWriterGrace: a node that stalls sends again what it wrote since the
+    //    rollback (`resend_since_rollback`), and a stall is no partition;
+    //  - kLingeringAfterResume, longer, so that a copy sent at the edge is still taken: a
+    //    step from the rollback's step K up to the newest one seen is a repeat (checked for
+    //    equal values where still in use), and a restarted partner's dead writer may
+    //    linger beside its new one (it took more than 4 s under load once).
+    constexpr double kLingeringAfterResume = 10.0;  // s
+    std::optional<Clock::time_point> resumed_at;
+    auto within_after_resume = [&](double seconds) {
+      return resumed_at && Clock::now() - *resumed_at < std::chrono::duration<double>(seconds);
+    };
+    // Otherwise a stream must go on one step after the other. A resumed node takes up a
+    // stream wherever it is.
     std::vector<bool> next_step_known(readers.size(), !resumed);
     std::optional<std::uint64_t> rollback_step;
     if (resumed) rollback_step = resumed->stepper.step;
-    Clock::time_point partition_exempt_until{}, repeats_accepted_until{};
     auto in_sequence = [&](std::size_t e, std::uint64_t step) {
       if (!next_step_known[e] || step == next_step[e]) return true;
-      return rollback_step && step >= *rollback_step && step < next_step[e] && Clock::now() < repeats_accepted_until;
+      return rollback_step && step >= *rollback_step && step < next_step[e] && within_after_resume(kLingeringAfterResume);
     };
     // The message names the writers the reader is matched with: the intruder among them.
     auto foreign = [&](const transport::SampleReader* r, const std::string& topic, const std::string& from, const std::string& what) {
@@ -295,16 +315,7 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
                                "; a participant that does not belong to this run writes into its domain " +
                                std::to_string(options.domain) + " (docs/faults.md)");
     };
-    // A second writer: hold (use no sample) while it lasts; a writer of a process that died
-    // lingers until its DDS lease runs out (2 s; a domain is reused by later runs), so only a
-    // second writer that stays longer than kForeignWriterGrace is foreign.
-    constexpr double kForeignWriterGrace = 4.0;  // s, above the 2 s lease of config/dds/
     std::optional<Clock::time_point> second_writer_since;
-    // After a resume a restarted partner's dead writer is expected to linger: it may take
-    // longer than the grace on a loaded machine (seen: more than 4 s with two busy loops
-    // on the two cores), so a second writer is tolerated until this time (resume + 10 s).
-    constexpr double kLingeringAfterResume = 10.0;  // s
-    Clock::time_point lingering_allowed_until{};
     // Every reader of a partner's samples, with the topic and the participant it expects.
     struct WatchedReader {
       const transport::SampleReader* reader;
@@ -317,11 +328,9 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
     }
     if (cut_reader) watched.push_back({cut_reader.get(), node.cut->partner_topic, node.cut->partner});
     if (twin_cut_reader) watched.push_back({twin_cut_reader.get(), transport::redundant_topic(node.cut->partner_topic), node.cut->partner});
-    // After a rollback a restarted partner's dead writer lingers next to its new one until
-    // its lease runs out: expected, so no hold and no failure until
-    // lingering_allowed_until (the sequence and equal-value checks still apply); after that
-    // a second writer is one like any other.
-    auto holding = [&] { return second_writer_since.has_value() && Clock::now() >= lingering_allowed_until; };
+    // No hold (and no failure) for a second writer while a restarted partner's dead one may
+    // still linger; after that a second writer is one like any other.
+    auto holding = [&] { return second_writer_since.has_value() && !within_after_resume(kLingeringAfterResume); };
     // True while the node must hold; throws once a second writer outstayed the grace.
     auto hold_for_second_writer = [&] {
       const auto w = std::find_if(watched.begin(), watched.end(), [](const WatchedReader& r) { return r.reader->matched_writers() > 1; });
@@ -331,7 +340,7 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
       }
       if (!second_writer_since) second_writer_since = Clock::now();
       if (std::chrono::duration<double>(Clock::now() - *second_writer_since).count() > kForeignWriterGrace &&
-          Clock::now() >= lingering_allowed_until)
+          !within_after_resume(kLingeringAfterResume))
         foreign(w->reader, w->topic, w->from, "more than one writer for " + std::to_string(static_cast<int>(kForeignWriterGrace)) + " s");
       return holding();
     };
@@ -406,11 +415,21 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
       }
       if (took) hold_for_second_writer();
     };
+    // Every write of the node's own sample and of its cut prediction, each with its
+    // redundant twin.
+    auto write_own = [&](const transport::SampleHeader& h, const std::vector<double>& v) {
+      writer->write(h, v);
+      if (twin_writer) twin_writer->write(h, v);
+    };
+    auto write_prediction = [&](const transport::SampleHeader& h, const std::vector<double>& v) {
+      cut_writer->write(h, v);
+      if (twin_cut_writer) twin_cut_writer->write(h, v);
+    };
     // --- sending again after a rollback ---
     // A restarted node's writers and readers are new to its partners, and DDS discovery
     // completes on each side on its own: a sample written before the other side matched a
     // writer never arrives (VOLATILE), and lock step would wait for it for good (seen in
-    // CI). So until the run has moved on (partition_exempt_until) a node keeps what it
+    // CI). So for kForeignWriterGrace after the resume a node keeps what it
     // wrote since the rollback and writes it again whenever it has waited
     // kResendAfterStall without taking a step; receivers take the copies as repeats
     // (in_sequence). A lost sample stalls its receiver, and in a loop of partners that
@@ -425,25 +444,22 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
     constexpr auto kResendAfterStall = std::chrono::milliseconds(100);
     Clock::time_point last_step_taken = Clock::now(), last_resend{};
     auto keep_sent = [&](bool prediction, const transport::SampleHeader& h, const std::vector<double>& v) {
-      if (Clock::now() >= partition_exempt_until) return;
+      if (!within_after_resume(kForeignWriterGrace)) return;  // no clock read in a run without rollback
       if (sent_since_rollback.size() == kSentKept) sent_since_rollback.erase(sent_since_rollback.begin());
       sent_since_rollback.push_back({prediction, h, v});
     };
     auto resend_since_rollback = [&] {
+      if (sent_since_rollback.empty() || !within_after_resume(kForeignWriterGrace)) return;
       const auto now = Clock::now();
-      if (sent_since_rollback.empty() || now >= partition_exempt_until || now - last_step_taken < kResendAfterStall ||
-          now - last_resend < kResendAfterStall)
-        return;
+      if (now - last_step_taken < kResendAfterStall || now - last_resend < kResendAfterStall) return;
       if (last_resend < last_step_taken)  // once per stall in the log
         std::printf("rollback: no step for %.2f s at step %llu: %zu sample(s) sent since the rollback sent again\n",
                     std::chrono::duration<double>(now - last_step_taken).count(), static_cast<unsigned long long>(stepper.step()),
                     sent_since_rollback.size());
       last_resend = now;
       for (const SentSample& s : sent_since_rollback) {
-        transport::SampleWriter& w = s.prediction ? *cut_writer : *writer;
-        transport::SampleWriter* twin = s.prediction ? twin_cut_writer.get() : twin_writer.get();
-        w.write(s.header, s.values);
-        if (twin) twin->write(s.header, s.values);
+        if (s.prediction) write_prediction(s.header, s.values);
+        else write_own(s.header, s.values);
       }
     };
     // Test hook (restart_test): MECHSIM_TEST_LOSE_RESTORED_SAMPLE=NODE makes NODE leave out
@@ -457,17 +473,13 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
       if (!stepper.prediction_due()) return;
       stepper.predict(prediction);
       const transport::SampleHeader h{options.run_id, stepper.step(), stepper.time()};
-      if (!std::exchange(lose_next_prediction, false)) {
-        cut_writer->write(h, prediction);
-        if (twin_cut_writer) twin_cut_writer->write(h, prediction);
-      }
+      if (!std::exchange(lose_next_prediction, false)) write_prediction(h, prediction);
       keep_sent(true, h, prediction);
     };
     std::optional<transport::ControlMessage> pending_rollback;
     auto check_control = [&] {
-      while (auto c = control->take()) {
-        if (!command_for_this_run(*c)) continue;
-        if (c->command == transport::ControlCommand::abort || c->command == transport::ControlCommand::stop) return true;
+      while (auto c = next_command()) {
+        if (ends_the_run(*c)) return true;
         if (c->command == transport::ControlCommand::rollback && c->generation > generation) pending_rollback = *c;
       }
       return false;
@@ -515,8 +527,7 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
       header.step = stepper.step();
       header.t = stepper.time();
       if (pacer) pacer->wait_for_deadline(header.step, rt.spin_wait ? rt.spin_limit : 0.0);
-      writer->write(header, values);
-      if (twin_writer) twin_writer->write(header, values);
+      write_own(header, values);
       keep_sent(false, header, values);
       if (pacer) pace(header.step);
       if (log) log->append(header.t, stepper.outputs());
@@ -527,9 +538,6 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
     bool initialised = false;
     // --- restart with rollback (checkpoint.h, docs/faults.md) ---
     bool announce_step = false;  // after a resume: the first step taken goes to the launcher at once
-    // After a resume the partners of a restarted node hold while its dead writer lingers
-    // (its lease, under kForeignWriterGrace): a wait that long is no partition
-    // (partition_exempt_until, declared with the sequence check above).
     auto write_node_checkpoint = [&] {
       log->flush();
       std::int64_t events_bytes = 0;
@@ -557,16 +565,11 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
     // back as well and need them), kept for sending again, and the first step taken
     // reported at once.
     auto go_on_after_rollback = [&] {
-      partition_exempt_until = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(kForeignWriterGrace));
-      lingering_allowed_until = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(kLingeringAfterResume));
-      repeats_accepted_until = lingering_allowed_until;
+      resumed_at = Clock::now();
       sent_since_rollback.clear();
       last_step_taken = Clock::now();
       lose_next_prediction = lose_restored_sample && cut_writer;
-      if (!lose_restored_sample) {
-        writer->write(header, values);
-        if (twin_writer) twin_writer->write(header, values);
-      }
+      if (!lose_restored_sample) write_own(header, values);
       keep_sent(false, header, values);
       announce_step = true;
     };
@@ -575,9 +578,8 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
     auto await_resume = [&] {
       for (;;) {
         if (stop_requested()) return false;
-        while (auto c = control->take()) {
-          if (!command_for_this_run(*c)) continue;
-          if (c->command == transport::ControlCommand::abort || c->command == transport::ControlCommand::stop) return false;
+        while (auto c = next_command()) {
+          if (ends_the_run(*c)) return false;
           if (c->command == transport::ControlCommand::resume && c->generation == generation) return true;
           if (c->command == transport::ControlCommand::rollback && c->generation > generation)
             throw std::runtime_error("a second rollback (generation " + std::to_string(c->generation) + ") before the run resumed");
@@ -622,7 +624,7 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
     auto waiting_since = Clock::now();
     std::uint64_t waiting_step = UINT64_MAX;
     auto check_partition = [&] {
-      if (stepper.step() != waiting_step || !initialised || Clock::now() < partition_exempt_until) {
+      if (stepper.step() != waiting_step || !initialised || within_after_resume(kForeignWriterGrace)) {
         waiting_step = initialised ? stepper.step() : UINT64_MAX;
         waiting_since = Clock::now();
         return;
