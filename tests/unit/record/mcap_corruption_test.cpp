@@ -1,5 +1,9 @@
 // Corrupted bytes are detected by the CRCs, never silently read as data.
 #include <gtest/gtest.h>
+#include <sys/resource.h>
+
+#include <cstdint>
+#include <string>
 
 #include "mechsim/record/mcap_reader.h"
 #include "mechsim/record/mcap_recover.h"
@@ -137,6 +141,66 @@ TEST(McapCorruptionCompressed, FlippedCompressedByteIsDetected) {
   test::write_bytes(bad, bytes.data(), bytes.size());
   EXPECT_THROW(McapReader(bad).read_messages(), McapError);
 }
+
+// A chunk header claiming a far larger uncompressed size than its data holds is refused
+// without allocating the claim (decompression allocated it up front: 3.6 GB, found by
+// tests/fuzz/mcap_fuzz); one claiming less than the data holds is refused as well.
+class McapClaimedChunkSize : public ::testing::TestWithParam<Compression> {
+ protected:
+  // The file with chunk 1's uncompressed_size replaced; returns its path.
+  std::string with_claimed_size(uint64_t claimed) {
+    options_.compression = GetParam();
+    options_.chunk_size = 4096;
+    const std::string path = dir_.file("clean.mcap");
+    test::write_sample(path, options_, 600);
+    auto bytes = test::read_bytes(path);
+    chunk_ = McapReader(path).chunks().at(1);
+    const std::size_t size_at = chunk_.chunk_start_offset + 1 + 8 + 8 + 8;
+    for (int i = 0; i < 8; ++i) bytes.at(size_at + i) = uint8_t(claimed >> (8 * i));
+    const std::string bad = dir_.file("claimed.mcap");
+    test::write_bytes(bad, bytes.data(), bytes.size());
+    return bad;
+  }
+  std::string error_reading(const std::string& path) {
+    try {
+      McapReader(path).read_chunk(chunk_);
+    } catch (const McapError& e) {
+      return e.what();
+    }
+    return "(no error)";
+  }
+
+  test::ScratchDir dir_;
+  WriterOptions options_;
+  ChunkInfo chunk_;
+};
+
+long peak_rss_kib() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_maxrss;
+}
+
+TEST_P(McapClaimedChunkSize, AClaimOfGigabytesIsRefusedWithoutAllocatingIt) {
+  const uint64_t claimed = 3640656057;
+  const std::string path = with_claimed_size(claimed);
+  const long rss_before = peak_rss_kib();
+  const std::string error = error_reading(path);
+  EXPECT_NE(error.find("chunk says " + std::to_string(claimed)), std::string::npos) << error;
+  // The old code touched the whole claim; the real chunk is 4 KiB. 256 MiB is room for any
+  // allocator noise and far below the claim.
+  EXPECT_LT(peak_rss_kib() - rss_before, 256 * 1024) << "the claimed size was allocated";
+}
+
+TEST_P(McapClaimedChunkSize, AClaimSmallerThanTheDataIsRefused) {
+  const std::string path = with_claimed_size(100);
+  const std::string error = error_reading(path);
+  EXPECT_NE(error.find("larger than the chunk says (100 bytes)"), std::string::npos) << error;
+}
+
+INSTANTIATE_TEST_SUITE_P(Codecs, McapClaimedChunkSize,
+                         ::testing::Values(Compression::zstd, Compression::lz4),
+                         [](const auto& info) { return compression_name(info.param); });
 
 }  // namespace
 }  // namespace mechsim::record
