@@ -70,7 +70,7 @@ int node_main(const char* node_type, int argc, char** argv) {
     if (!replay.empty()) {
       cosim::PlannedNode& node = plan.node(node_name);
       cosim::replace_with_replay(node, cosim::recorded_topic_from_log(cosim::read_output_log(replay), *node.type->publishes, replay),
-                                 scene.time);
+                                 plan.grid());
     }
     // Real-time mode only (a lock-step run of FIFO nodes flat out would starve the rest of
     // the machine), and before the DDS participant exists, so that the vendor's threads

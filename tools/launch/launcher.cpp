@@ -215,7 +215,7 @@ void Run::print_progress(double since_start, bool final_line) {
   if (!tty_ || !opt_.progress) return;
   std::uint64_t step = UINT64_MAX;
   for (const auto& [name, w] : watch_) step = std::min<std::uint64_t>(step, w.seen ? w.last.header.step : 0);
-  const double t = scene_.time.start + static_cast<double>(step) * scene_.time.step;
+  const double t = plan_.grid()->time(std::min(step, plan_.grid()->steps()));
   const double rate = since_start > 0 ? static_cast<double>(step) / since_start : 0.0;
   const double rtf = since_start > 0 ? (t - scene_.time.start) / since_start : 0.0;
   std::string realtime;
@@ -761,7 +761,7 @@ int Run::execute() {
     const ReplayRequest r = parse_replay_request(text);
     const std::string table = run_dir_ + "/" + r.node + ".replay.bin";
     try {
-      write_replay_table(r.file, plan_.node(r.node), scene_.time, table);
+      write_replay_table(r.file, plan_.node(r.node), *plan_.grid(), table);
     } catch (const std::exception& e) {
       std::fprintf(stderr, "mechsim launch: --replay %s: %s\n", text.c_str(), e.what());
       return 2;

@@ -17,7 +17,7 @@ ReplayRequest parse_replay_request(const std::string& text) {
   return {text.substr(0, eq), text.substr(eq + 1)};
 }
 
-void write_replay_table(const std::string& recording, const cosim::PlannedNode& node, const config::TimeSpec& time,
+void write_replay_table(const std::string& recording, const cosim::PlannedNode& node, const cosim::StepGrid& grid,
                         const std::string& table_path) {
   const transport::TopicType& type = *node.type->publishes;
   const recorder::MessageLayout* layout = recorder::find_layout(type.idl_name);
@@ -43,7 +43,7 @@ void write_replay_table(const std::string& recording, const cosim::PlannedNode& 
   if (runs.size() > 1)
     throw std::runtime_error(recording + ": topic '" + node.topic + "' holds samples of " + std::to_string(runs.size()) +
                              " runs; replay needs a recording of one run");
-  const auto steps = static_cast<std::uint64_t>(time.steps());
+  const std::uint64_t steps = grid.steps();
   for (std::uint64_t k = 0; k <= steps; ++k)
     if (!rows.count(k))
       throw std::runtime_error(recording + ": topic '" + node.topic + "' has no sample for step " + std::to_string(k) +
@@ -53,7 +53,7 @@ void write_replay_table(const std::string& recording, const cosim::PlannedNode& 
   std::vector<std::string> columns;  // the writer puts "t" first itself
   for (const auto& f : type.fields) columns.push_back(f.name);
   cosim::OutputLogWriter table(table_path, columns);
-  for (std::uint64_t k = 0; k <= steps; ++k) table.append(time.start + static_cast<double>(k) * time.step, rows[k]);
+  for (std::uint64_t k = 0; k <= steps; ++k) table.append(grid.time(k), rows[k]);
   table.close();
 }
 

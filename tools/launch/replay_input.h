@@ -6,6 +6,7 @@
 #include <string>
 
 #include "mechsim/cosim/scene_plan.h"
+#include "mechsim/cosim/step_grid.h"
 
 namespace mechsim::launch {
 
@@ -22,7 +23,7 @@ ReplayRequest parse_replay_request(const std::string& text);
 // naming the file when the recording is unreadable, lacks the topic, mixes several runs on
 // it, skips a step or ends before the scene does. A truncated recording is read as far as
 // it goes (recover it first with `mechsim record --recover` for the rest).
-void write_replay_table(const std::string& recording, const cosim::PlannedNode& node, const config::TimeSpec& time,
+void write_replay_table(const std::string& recording, const cosim::PlannedNode& node, const cosim::StepGrid& grid,
                         const std::string& table_path);
 
 }  // namespace mechsim::launch

@@ -211,7 +211,8 @@ ReferenceRun run_reference(ScenePlan& plan, double rtol, double atol) {
   run.log.columns.push_back("t");
   for (const auto& o : composite.outputs()) run.log.columns.push_back(o.name);
   run.log.data.resize(run.log.columns.size());
-  const long n = time.steps();
+  const StepGrid& grid = *plan.grid();  // sampled where the nodes publish
+  const auto n = static_cast<long>(grid.steps());
   for (auto& column : run.log.data) column.reserve(n + 1);
   auto sample = [&](double t) {
     composite.calc_outputs(t, integrator.state(), {}, y);
@@ -222,7 +223,7 @@ ReferenceRun run_reference(ScenePlan& plan, double rtol, double atol) {
   integrator.advance_to(time.start, no_inputs);  // sampled blocks: the t0 sample before the t0 outputs
   sample(time.start);
   for (long k = 1; k <= n; ++k) {
-    const double t = time.start + static_cast<double>(k) * time.step;
+    const double t = grid.time(static_cast<std::uint64_t>(k));
     integrator.advance_to(t, no_inputs);
     for (auto& e : composite.take_event_log()) run.events.push_back(std::move(e));
     sample(t);

@@ -2,13 +2,13 @@
 
 #include <algorithm>
 #include <cstring>
-
 #include <stdexcept>
 
 namespace mechsim::cosim {
 
-InputChannel::InputChannel(config::EdgeOrder order, config::Reconstruction reconstruction, double t0, double step)
-    : order_(order), reconstruction_(reconstruction), t0_(t0), step_(step) {
+InputChannel::InputChannel(config::EdgeOrder order, config::Reconstruction reconstruction,
+                           std::shared_ptr<const StepGrid> grid)
+    : order_(order), reconstruction_(reconstruction), grid_(std::move(grid)) {
   spare_.reserve(16);  // a channel holds 3-4 samples at a time; room for bursts ahead
 }
 
@@ -48,7 +48,7 @@ bool InputChannel::ready_for_initial() const {
 void InputChannel::values_at(double t, std::uint64_t k, std::vector<double>& out) const {
   // The fraction of the step comes from the step index, not from accumulated time, so
   // every node reconstructs bit-identically whatever the timing.
-  const double s = (t - (t0_ + static_cast<double>(k) * step_)) / step_;
+  const double s = (t - grid_->time(k)) / grid_->step_length(k);
   const std::vector<double>* now = find(k);
   if (order_ == config::EdgeOrder::gauss_seidel) {
     const std::vector<double>* next = find(k + 1);
@@ -61,10 +61,10 @@ void InputChannel::values_at(double t, std::uint64_t k, std::vector<double>& out
     for (std::size_t i = 0; i < out.size(); ++i) out[i] = (*now)[i] + s * ((*next)[i] - (*now)[i]);
     return;
   }
-  extrapolate(s, k, out);
+  extrapolate(t, s, k, out);
 }
 
-void InputChannel::extrapolate(double s, std::uint64_t k, std::vector<double>& out) const {
+void InputChannel::extrapolate(double t, double s, std::uint64_t k, std::vector<double>& out) const {
   const std::vector<double>* now = find(k);
   if (!now) throw std::logic_error("Jacobi input reconstructed without its step-k sample");
   const std::vector<double>* before = k > 0 && reconstruction_ != config::Reconstruction::hold ? find(k - 1) : nullptr;
@@ -77,6 +77,19 @@ void InputChannel::extrapolate(double s, std::uint64_t k, std::vector<double>& o
   out.resize(now->size());
   // Newton's backward form through steps k, k-1 (and k-2): exact for polynomials of the
   // reconstruction's degree; a quadratic starts as linear while k-2 does not exist yet.
+  if (!grid_->uniform()) {  // the same polynomial through the samples' own instants
+    const double tk = grid_->time(k), tk1 = grid_->time(k - 1);
+    const double tk2 = oldest ? grid_->time(k - 2) : 0.0;
+    for (std::size_t i = 0; i < out.size(); ++i) {
+      const double slope = ((*now)[i] - (*before)[i]) / (tk - tk1);
+      out[i] = (*now)[i] + (t - tk) * slope;
+      if (oldest) {
+        const double slope_before = ((*before)[i] - (*oldest)[i]) / (tk1 - tk2);
+        out[i] += (t - tk) * (t - tk1) * (slope - slope_before) / (tk - tk2);
+      }
+    }
+    return;
+  }
   for (std::size_t i = 0; i < out.size(); ++i) {
     const double first = (*now)[i] - (*before)[i];
     out[i] = (*now)[i] + s * first;
@@ -90,7 +103,7 @@ void InputChannel::values_at_step_end(std::uint64_t k, std::vector<double>& out)
     if (!next) throw std::logic_error("Gauss-Seidel input reconstructed without its samples");
     out = *next;
   } else {
-    extrapolate(1.0, k, out);
+    extrapolate(grid_->time(k + 1), 1.0, k, out);
   }
 }
 

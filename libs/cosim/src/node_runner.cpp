@@ -197,7 +197,7 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
       }
     }
 
-    NodeStepper stepper(node, scene.time);
+    NodeStepper stepper(node, plan.grid());
     // Restarted after a crash: the checkpoint to resume from (docs/faults.md).
     std::optional<NodeCheckpoint> resumed;
     if (options.resume_step) {

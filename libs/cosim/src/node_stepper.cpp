@@ -17,10 +17,12 @@ solve::SolverOptions solver_options(const config::SolverSpec& spec) {
 }
 
 NodeStepper::NodeStepper(PlannedNode& node, const config::TimeSpec& time)
-    : node_(node), t0_(time.start), h_(time.step), n_steps_(static_cast<std::uint64_t>(time.steps())) {
+    : NodeStepper(node, std::make_shared<const StepGrid>(time)) {}
+
+NodeStepper::NodeStepper(PlannedNode& node, std::shared_ptr<const StepGrid> grid) : node_(node), grid_(std::move(grid)) {
   const models::Block& block = *node.block;
   for (const auto& edge : node.inputs) {
-    InputChannel channel(edge.order, edge.reconstruction, t0_, h_);
+    InputChannel channel(edge.order, edge.reconstruction, grid_);
     // A Jacobi edge's initial values are the defaults of the inputs it feeds.
     std::vector<double> initial(edge.type->fields.size(), 0.0);
     for (const auto& [field, input] : edge.field_to_input) initial[field] = block.inputs()[input].default_value;
@@ -32,13 +34,13 @@ NodeStepper::NodeStepper(PlannedNode& node, const config::TimeSpec& time)
   u_ = defaults_;
   y_.assign(block.num_outputs(), 0.0);
   x_.assign(block.num_states(), 0.0);
-  block.initial_state(t0_, x_);
+  block.initial_state(grid_->start(), x_);
   if (node.cut) cut_side_ = std::make_unique<coupling::InterfaceSide>(*node.block, node.cut->torque_input,
                                                                       node.cut->angle_output, node.cut->levels);
   spare_predictions_.reserve(4);
 }
 
-double NodeStepper::time() const { return t0_ + static_cast<double>(k_) * h_; }
+double NodeStepper::time() const { return grid_->time(k_); }
 
 bool NodeStepper::can_initialise() const {
   for (const auto& c : channels_)
@@ -64,7 +66,7 @@ bool NodeStepper::prediction_due() const {
 void NodeStepper::predict(std::vector<double>& prediction_fields) {
   if (!prediction_due()) throw std::logic_error("prediction before the step's inputs arrived");
   const std::uint64_t k = k_;
-  cut_side_->predict(*integrator_, t0_ + static_cast<double>(k + 1) * h_,
+  cut_side_->predict(*integrator_, grid_->time(k + 1),
                      [this, k](double t, std::span<double> u) { inputs_at(t, k, u); }, assumed_torque_, own_prediction_);
   has_own_prediction_ = true;
   coupling::to_fields(own_prediction_, prediction_fields);
@@ -110,12 +112,12 @@ void NodeStepper::publishable(std::vector<double>& topic_values) const {
 void NodeStepper::initialise(std::vector<double>& topic_values) {
   if (!can_initialise()) throw std::logic_error("initialise before the Gauss-Seidel inputs of step 0 arrived");
   initial_inputs(u_);
-  integrator_ = std::make_unique<solve::BlockIntegrator>(*node_.block, solver_options(node_.spec->solver), t0_, x_);
+  integrator_ = std::make_unique<solve::BlockIntegrator>(*node_.block, solver_options(node_.spec->solver), grid_->start(), x_);
   // A sampled block takes its t0 sample now, so that its step-0 outputs are what it holds
   // over [t0, t1], as in the reference (which samples at t0 before its first step).
   if (node_.block->sample_time() > 0)
-    integrator_->advance_to(t0_, [this](double, std::span<double> u) { std::copy(u_.begin(), u_.end(), u.begin()); });
-  node_.block->calc_outputs(t0_, integrator_->state(), u_, y_);
+    integrator_->advance_to(grid_->start(), [this](double, std::span<double> u) { std::copy(u_.begin(), u_.end(), u.begin()); });
+  node_.block->calc_outputs(grid_->start(), integrator_->state(), u_, y_);
   publishable(topic_values);
   k_ = 0;
   initialised_ = true;
@@ -124,8 +126,8 @@ void NodeStepper::initialise(std::vector<double>& topic_values) {
 void NodeStepper::step(std::vector<double>& topic_values) {
   if (!can_step()) throw std::logic_error("step before its inputs arrived");
   const std::uint64_t k = k_;
-  // Index-based time, never accumulated: t_k+1 = t0 + (k+1) H.
-  const double t_next = t0_ + static_cast<double>(k + 1) * h_;
+  // Index-based time, never accumulated (the grid's t_k+1).
+  const double t_next = grid_->time(k + 1);
   const auto inputs = [this, k](double t, std::span<double> u) { inputs_at(t, k, u); };
   if (cut_side_) {
     // Both sides solve the same system with the "+" side's prediction first: equal torques.
@@ -210,15 +212,15 @@ void NodeStepper::restore(const StepperSnapshot& s, std::vector<double>& topic_v
   const std::string who = "restore of node '" + node_.name() + "'";
   if (s.state.size() != x_.size() || s.outputs.size() != y_.size() || s.channels.size() != channels_.size())
     throw std::invalid_argument(who + ": the checkpoint does not fit this node (state, outputs or channels differ)");
-  if (s.step > n_steps_) throw std::invalid_argument(who + ": checkpoint step " + std::to_string(s.step) + " is past the run's end");
+  if (s.step > grid_->steps()) throw std::invalid_argument(who + ": checkpoint step " + std::to_string(s.step) + " is past the run's end");
   if (!integrator_) {
-    integrator_ = std::make_unique<solve::BlockIntegrator>(*node_.block, solver_options(node_.spec->solver), t0_, x_);
+    integrator_ = std::make_unique<solve::BlockIntegrator>(*node_.block, solver_options(node_.spec->solver), grid_->start(), x_);
     // The t0 sample is behind a restored node, as behind one that initialised (it is
     // overwritten by the restored discrete state below).
     if (node_.block->sample_time() > 0)
-      integrator_->advance_to(t0_, [this](double, std::span<double> u) { std::copy(defaults_.begin(), defaults_.end(), u.begin()); });
+      integrator_->advance_to(grid_->start(), [this](double, std::span<double> u) { std::copy(defaults_.begin(), defaults_.end(), u.begin()); });
   }
-  const double t = t0_ + static_cast<double>(s.step) * h_;
+  const double t = grid_->time(s.step);
   // A new time resumes the sample grid after t: the sample at t was taken before the checkpoint.
   integrator_->reset_state(t, s.state);
   if (!s.discrete.empty() || !node_.block->save_discrete_state().empty()) node_.block->restore_discrete_state(s.discrete);

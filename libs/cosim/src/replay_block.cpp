@@ -1,14 +1,14 @@
 #include "mechsim/cosim/replay_block.h"
 
-#include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
 namespace mechsim::cosim {
 
 ReplayBlock::ReplayBlock(const models::Block& replaced, const std::vector<int>& published_outputs, RecordedTopic recorded,
-                         const config::TimeSpec& time)
-    : models::Block(replaced.type_name() + " (replayed)"), recorded_(std::move(recorded)), t0_(time.start), h_(time.step) {
+                         std::shared_ptr<const StepGrid> grid)
+    : models::Block(replaced.type_name() + " (replayed)"), recorded_(std::move(recorded)), grid_(std::move(grid)) {
   // The same inputs, so that the scene's edges map onto it unchanged (and the node waits
   // for its partners exactly as the original did). No output feeds through: a recording
   // does not depend on what the partners send now.
@@ -32,12 +32,11 @@ std::vector<int> ReplayBlock::published_outputs() const {
 }
 
 void ReplayBlock::calc_outputs(double t, std::span<const double>, std::span<const double>, std::span<double> y) const {
-  // Outputs are asked for at the macro-step instants t_k = t0 + k H (computed from k), so
-  // rounding recovers k exactly.
-  const double k_real = std::round((t - t0_) / h_);
-  if (!(k_real >= 0) || k_real >= static_cast<double>(recorded_.rows.size()))
+  // Outputs are asked for at the grid's instants (computed from k), so k is found exactly.
+  const std::optional<std::uint64_t> k = grid_->step_at(t);
+  if (!k || *k >= recorded_.rows.size())
     throw std::runtime_error("replay: the recording has no sample for t = " + std::to_string(t) + " s");
-  const auto& row = recorded_.rows[static_cast<std::size_t>(k_real)];
+  const auto& row = recorded_.rows[static_cast<std::size_t>(*k)];
   for (std::size_t o = 0; o < field_of_output_.size(); ++o) y[o] = row.at(static_cast<std::size_t>(field_of_output_[o]));
 }
 
@@ -55,13 +54,13 @@ RecordedTopic recorded_topic_from_log(const OutputLog& log, const transport::Top
   return r;
 }
 
-void replace_with_replay(PlannedNode& node, RecordedTopic recorded, const config::TimeSpec& time) {
-  const auto needed = static_cast<std::size_t>(time.steps()) + 1;
+void replace_with_replay(PlannedNode& node, RecordedTopic recorded, std::shared_ptr<const StepGrid> grid) {
+  const auto needed = static_cast<std::size_t>(grid->steps()) + 1;
   if (recorded.rows.size() < needed)
     throw std::runtime_error("replay of '" + node.name() + "': the recording holds " +
                              (recorded.rows.empty() ? std::string("no step") : "steps 0.." + std::to_string(recorded.rows.size() - 1)) +
                              " of its topic, the scene needs steps 0.." + std::to_string(needed - 1));
-  auto replay = std::make_unique<ReplayBlock>(*node.block, node.published_outputs, std::move(recorded), time);
+  auto replay = std::make_unique<ReplayBlock>(*node.block, node.published_outputs, std::move(recorded), std::move(grid));
   std::vector<int> published = replay->published_outputs();
   published.resize(node.published_outputs.size(), -1);
   node.published_outputs = std::move(published);

@@ -91,6 +91,7 @@ void plan_interface_jacobian_cut(const config::Scene& scene, const config::Conne
 ScenePlan ScenePlan::build(const config::Scene& scene) {
   ScenePlan plan;
   plan.scene_ = &scene;
+  plan.grid_ = std::make_shared<const StepGrid>(scene.time);
   for (const auto& spec : scene.participants) {
     PlannedNode node;
     node.spec = &spec;

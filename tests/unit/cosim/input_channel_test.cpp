@@ -10,8 +10,11 @@ using config::EdgeOrder;
 using config::Reconstruction;
 constexpr double kH = 0.1;
 
+// The uniform grid of H = kH over 10 s.
+std::shared_ptr<const StepGrid> uniform() { return std::make_shared<const StepGrid>(config::TimeSpec{0.0, 10.0, kH}); }
+
 TEST(InputChannel, JacobiHoldNeedsStepKAndHoldsIt) {
-  InputChannel c(EdgeOrder::jacobi, Reconstruction::hold, 0.0, kH);
+  InputChannel c(EdgeOrder::jacobi, Reconstruction::hold, uniform());
   EXPECT_TRUE(c.ready_for_initial());  // a Jacobi edge never blocks the initial outputs
   EXPECT_FALSE(c.ready_for_step(0));
   c.add(0, {1.0});
@@ -26,7 +29,7 @@ TEST(InputChannel, JacobiHoldNeedsStepKAndHoldsIt) {
 }
 
 TEST(InputChannel, JacobiQuadraticIsExactOnAParabolaAndStartsAsHoldThenLinear) {
-  InputChannel c(EdgeOrder::jacobi, Reconstruction::quadratic, 0.0, kH);
+  InputChannel c(EdgeOrder::jacobi, Reconstruction::quadratic, uniform());
   auto y = [](double step) { return 1.0 + 2.0 * step + 3.0 * step * step; };  // a parabola in t / H
   std::vector<double> v;
   c.add(0, {y(0)});
@@ -47,7 +50,7 @@ TEST(InputChannel, JacobiQuadraticIsExactOnAParabolaAndStartsAsHoldThenLinear) {
 }
 
 TEST(InputChannel, JacobiLinearExtrapolatesFromTwoSamplesAndStartsAsHold) {
-  InputChannel c(EdgeOrder::jacobi, Reconstruction::linear, 0.0, kH);
+  InputChannel c(EdgeOrder::jacobi, Reconstruction::linear, uniform());
   c.add(0, {1.0});
   std::vector<double> v;
   c.values_at(0.05, 0, v);
@@ -60,7 +63,7 @@ TEST(InputChannel, JacobiLinearExtrapolatesFromTwoSamplesAndStartsAsHold) {
 }
 
 TEST(InputChannel, GaussSeidelWaitsForStepKPlusOneAndInterpolates) {
-  InputChannel c(EdgeOrder::gauss_seidel, Reconstruction::hold, 0.0, kH);
+  InputChannel c(EdgeOrder::gauss_seidel, Reconstruction::hold, uniform());
   EXPECT_FALSE(c.ready_for_initial());
   c.add(0, {2.0});
   EXPECT_TRUE(c.ready_for_initial());
@@ -75,7 +78,7 @@ TEST(InputChannel, GaussSeidelWaitsForStepKPlusOneAndInterpolates) {
 }
 
 TEST(InputChannel, InitialValuesOfAJacobiEdgeAreTheDeclaredDefaults) {
-  InputChannel c(EdgeOrder::jacobi, Reconstruction::hold, 0.0, kH);
+  InputChannel c(EdgeOrder::jacobi, Reconstruction::hold, uniform());
   c.initial_values(std::vector<double>{7.0, 8.0});
   std::vector<double> v;
   c.initial_values_at(v);
@@ -83,7 +86,7 @@ TEST(InputChannel, InitialValuesOfAJacobiEdgeAreTheDeclaredDefaults) {
 }
 
 TEST(InputChannel, SamplesArrivingOutOfOrderAreUsedByStep) {
-  InputChannel c(EdgeOrder::jacobi, Reconstruction::hold, 0.0, kH);
+  InputChannel c(EdgeOrder::jacobi, Reconstruction::hold, uniform());
   c.add(2, {20.0});
   c.add(0, {0.0});
   c.add(1, {10.0});
@@ -93,6 +96,36 @@ TEST(InputChannel, SamplesArrivingOutOfOrderAreUsedByStep) {
   c.discard_before(3);
   EXPECT_TRUE(c.ready_for_step(2));
   EXPECT_FALSE(c.ready_for_step(0));
+}
+
+// On a grid whose steps differ (a step landing on an event), extrapolation goes through the
+// samples' own instants: a parabola in t is reproduced exactly across the short step and
+// after it, where extrapolating in step fractions (as if the steps were equal) is not.
+TEST(InputChannel, JacobiQuadraticIsExactOnAParabolaInTimeAcrossAShortStep) {
+  const double event = 0.23;  // steps: ..., 0.2, 0.23 (short), 0.3, ...
+  auto grid = std::make_shared<const StepGrid>(StepGrid::landing_on({0.0, 1.0, kH}, std::vector<double>{event}));
+  ASSERT_EQ(grid->time(3), event);
+  InputChannel c(EdgeOrder::jacobi, Reconstruction::quadratic, grid);
+  auto y = [](double t) { return 1.0 - 4.0 * t + 7.0 * t * t; };
+  std::vector<double> v;
+  for (std::uint64_t k = 0; k <= 5; ++k) c.add(k, {y(grid->time(k))});
+  for (std::uint64_t k = 2; k <= 4; ++k) {  // k = 3 extrapolates from the short step
+    const double t_mid = 0.5 * (grid->time(k) + grid->time(k + 1));
+    c.values_at(t_mid, k, v);
+    EXPECT_NEAR(v[0], y(t_mid), 1e-12) << "step " << k;
+    c.values_at_step_end(k, v);
+    EXPECT_NEAR(v[0], y(grid->time(k + 1)), 1e-12) << "step " << k;
+  }
+}
+
+TEST(InputChannel, GaussSeidelInterpolatesOverAShortStepByItsOwnLength) {
+  auto grid = std::make_shared<const StepGrid>(StepGrid::landing_on({0.0, 1.0, kH}, std::vector<double>{0.23}));
+  InputChannel c(EdgeOrder::gauss_seidel, Reconstruction::hold, grid);
+  c.add(2, {0.0});
+  c.add(3, {3.0});  // at t = 0.23
+  std::vector<double> v;
+  c.values_at(0.22, 2, v);  // two thirds of the short step 0.2 -> 0.23
+  EXPECT_NEAR(v[0], 2.0, 1e-12);
 }
 
 }  // namespace

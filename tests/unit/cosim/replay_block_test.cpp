@@ -31,13 +31,13 @@ TEST(ReplayBlock, PublishesTheRecordedRowOfEachStepAndKeepsTheInputs) {
   PlannedNode& servo = nc.plan.node("servo");
   const std::size_t fields = servo.type->publishes->fields.size();
   const int inputs = servo.block->num_inputs();
-  replace_with_replay(servo, table(40, fields), nc.scene.time);
+  replace_with_replay(servo, table(40, fields), nc.plan.grid());
   EXPECT_EQ(servo.block->num_inputs(), inputs);  // the edges still map onto it
   EXPECT_EQ(servo.block->num_states(), 0);
   ASSERT_EQ(servo.published_outputs.size(), fields);
 
   // Through the node's own stepper: what it would publish at each step is the table row.
-  NodeStepper stepper(servo, nc.scene.time);
+  NodeStepper stepper(servo, nc.plan.grid());
   std::vector<double> published;
   ASSERT_TRUE(stepper.can_initialise());  // Jacobi inputs only: initial values
   stepper.initialise(published);
@@ -55,7 +55,7 @@ TEST(ReplayBlock, ARecordingShorterThanTheSceneIsRefused) {
   NcPlan nc;
   PlannedNode& servo = nc.plan.node("servo");
   try {
-    replace_with_replay(servo, table(39, servo.type->publishes->fields.size()), nc.scene.time);
+    replace_with_replay(servo, table(39, servo.type->publishes->fields.size()), nc.plan.grid());
     FAIL() << "accepted a recording of steps 0..39 for a scene of 40 steps";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("steps 0..39"), std::string::npos) << e.what();

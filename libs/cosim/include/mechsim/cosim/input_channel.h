@@ -11,16 +11,21 @@
 
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <span>
 #include <vector>
 
 #include "mechsim/config/scene.h"
+#include "mechsim/cosim/step_grid.h"
 
 namespace mechsim::cosim {
 
 class InputChannel {
  public:
-  InputChannel(config::EdgeOrder order, config::Reconstruction reconstruction, double t0, double step);
+  // Sample k is the partner's value at grid->time(k); on a grid that is not uniform the
+  // reconstruction uses those instants (divided differences), on a uniform one it is the
+  // same arithmetic as ever (bit-identical runs across versions).
+  InputChannel(config::EdgeOrder order, config::Reconstruction reconstruction, std::shared_ptr<const StepGrid> grid);
 
   // Stores a received sample (a copy). Samples may arrive in any order; a duplicate (the
   // redundant copy) is ignored when it carries the same values, and refused (false) when
@@ -56,11 +61,12 @@ class InputChannel {
 
  private:
   const std::vector<double>* find(std::uint64_t step) const;
-  // Jacobi reconstruction at fraction s of step k -> k+1 (s = 1: t_k+1).
-  void extrapolate(double s, std::uint64_t k, std::vector<double>& out) const;
+  // Jacobi reconstruction at time t of step k -> k+1; s is the fraction of the step
+  // (s = 1: t_k+1), what a uniform grid's arithmetic uses.
+  void extrapolate(double t, double s, std::uint64_t k, std::vector<double>& out) const;
   config::EdgeOrder order_;
   config::Reconstruction reconstruction_;
-  double t0_, step_;
+  std::shared_ptr<const StepGrid> grid_;
   std::map<std::uint64_t, std::vector<double>> samples_;
   std::vector<std::map<std::uint64_t, std::vector<double>>::node_type> spare_;  // discarded, for reuse
   std::vector<double> initial_;

@@ -14,6 +14,7 @@
 #include "mechsim/cosim/coupling/interface_jacobian.h"
 #include "mechsim/cosim/input_channel.h"
 #include "mechsim/cosim/scene_plan.h"
+#include "mechsim/cosim/step_grid.h"
 #include "mechsim/solve/block_integrator.h"
 
 namespace mechsim::cosim {
@@ -36,8 +37,11 @@ struct StepperSnapshot {
 
 class NodeStepper {
  public:
-  // `node` must outlive the stepper (it owns the block).
+  // `node` must outlive the stepper (it owns the block). Steps on the uniform grid of
+  // `time`, or on `grid` (every node of a run must step on the same grid).
   NodeStepper(PlannedNode& node, const config::TimeSpec& time);
+  NodeStepper(PlannedNode& node, std::shared_ptr<const StepGrid> grid);
+  const StepGrid& grid() const { return *grid_; }
 
   InputChannel& channel(std::size_t edge) { return channels_[edge]; }
   std::size_t channel_count() const { return channels_.size(); }
@@ -45,7 +49,7 @@ class NodeStepper {
   // Step index of the outputs published last (after initialise(): 0).
   std::uint64_t step() const { return k_; }
   double time() const;
-  bool finished() const { return initialised_ && k_ >= n_steps_; }
+  bool finished() const { return initialised_ && k_ >= grid_->steps(); }
 
   bool can_initialise() const;
   // Computes the step-0 outputs. `topic_values` receives the published fields.
@@ -100,8 +104,7 @@ class NodeStepper {
   std::vector<std::map<std::uint64_t, coupling::InterfacePrediction>::node_type> spare_predictions_;
   std::vector<double> levels_;
   double assumed_torque_ = 0.0, end_torque_ = 0.0;
-  double t0_, h_;
-  std::uint64_t n_steps_;
+  std::shared_ptr<const StepGrid> grid_;
   std::vector<InputChannel> channels_;
   std::unique_ptr<solve::BlockIntegrator> integrator_;
   std::vector<double> defaults_, u_, y_, x_, scratch_;

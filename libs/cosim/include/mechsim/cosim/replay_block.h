@@ -12,6 +12,7 @@
 #include "mechsim/config/scene.h"
 #include "mechsim/cosim/output_log.h"
 #include "mechsim/cosim/scene_plan.h"
+#include "mechsim/cosim/step_grid.h"
 #include "mechsim/models/block.h"
 
 namespace mechsim::cosim {
@@ -28,7 +29,7 @@ class ReplayBlock final : public models::Block {
   // as in PlannedNode. The replay has the replaced block's inputs and, as outputs, only
   // those a topic field carries (a recording knows nothing else), in field order.
   ReplayBlock(const models::Block& replaced, const std::vector<int>& published_outputs, RecordedTopic recorded,
-              const config::TimeSpec& time);
+              std::shared_ptr<const StepGrid> grid);
   void calc_outputs(double t, std::span<const double> x, std::span<const double> u, std::span<double> y) const override;
   // The topic field of each output: the node's published_outputs for this block.
   std::vector<int> published_outputs() const;
@@ -36,7 +37,7 @@ class ReplayBlock final : public models::Block {
  private:
   std::vector<int> field_of_output_;
   RecordedTopic recorded_;
-  double t0_, h_;
+  std::shared_ptr<const StepGrid> grid_;
 };
 
 // The table `mechsim launch` writes for a replayed node: an output log (output_log.h) with
@@ -45,6 +46,6 @@ RecordedTopic recorded_topic_from_log(const OutputLog& log, const transport::Top
 
 // Replaces `node`'s block by a ReplayBlock over `recorded` (and its published_outputs to
 // match). Throws std::runtime_error when the recording does not cover every step.
-void replace_with_replay(PlannedNode& node, RecordedTopic recorded, const config::TimeSpec& time);
+void replace_with_replay(PlannedNode& node, RecordedTopic recorded, std::shared_ptr<const StepGrid> grid);
 
 }  // namespace mechsim::cosim

@@ -13,6 +13,7 @@
 
 #include "mechsim/config/scene.h"
 #include "mechsim/cosim/catalog.h"
+#include "mechsim/cosim/step_grid.h"
 
 namespace mechsim::cosim {
 
@@ -60,6 +61,8 @@ class ScenePlan {
   static ScenePlan build(const config::Scene& scene);
 
   const config::Scene& scene() const { return *scene_; }
+  // The run's macro-step instants, the same for every node, the reference and the tools.
+  const std::shared_ptr<const StepGrid>& grid() const { return grid_; }
   std::vector<PlannedNode>& nodes() { return nodes_; }
   const std::vector<PlannedNode>& nodes() const { return nodes_; }
   const PlannedNode& node(const std::string& name) const;
@@ -69,6 +72,7 @@ class ScenePlan {
 
  private:
   const config::Scene* scene_ = nullptr;
+  std::shared_ptr<const StepGrid> grid_;
   std::vector<PlannedNode> nodes_;
 };
 

@@ -33,7 +33,7 @@ class SteppedRun {
       : scene_(std::make_unique<config::Scene>(config::load_scene(path, overrides))),
         plan_(std::make_unique<ScenePlan>(ScenePlan::build(*scene_))) {
     for (auto& node : plan_->nodes()) {
-      steppers_.push_back(std::make_unique<NodeStepper>(node, scene_->time));
+      steppers_.push_back(std::make_unique<NodeStepper>(node, plan_->grid()));
       std::vector<std::string> names;
       for (const auto& o : node.block->outputs()) names.push_back(o.name);
       guards_.push_back(std::make_unique<DivergenceGuard>(names));
@@ -46,7 +46,7 @@ class SteppedRun {
   const ScenePlan& plan() const { return *plan_; }
   // Called with (node index, step, the node's outputs) each time a node publishes a step.
   std::function<void(std::size_t, std::uint64_t, const std::vector<double>&)> on_publish;
-  std::uint64_t steps() const { return static_cast<std::uint64_t>(scene_->time.steps()); }
+  std::uint64_t steps() const { return plan_->grid()->steps(); }
   const std::optional<std::string>& diverged() const { return diverged_; }
   // Spring energy T^2/(2C) per step (max over the nodes that publish coupling_torque).
   const std::vector<double>& energy() const { return energy_; }

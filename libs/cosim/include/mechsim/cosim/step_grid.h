@@ -1,0 +1,53 @@
+// The macro-step instants of a run, t_0 .. t_n: one answer to "when is step k" for every
+// node, the reference, the replay, the pacer and the tools, so that all of them agree to
+// the bit.
+//
+// A uniform grid is t_k = t0 + k H, computed from k and never accumulated (so a node that
+// restarts at step K, a replay and the reference get the same instants as the run). A grid
+// that lands on events (landing_on) keeps those instants and adds each event as a boundary
+// of its own: the step before it ends on the event, the next one runs to the following
+// uniform instant. This is the ground for steps landing on announced events (issue 17,
+// docs/accuracy.md "Discontinuities"); what feeds it events is not there yet.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "mechsim/config/scene.h"
+
+namespace mechsim::cosim {
+
+class StepGrid {
+ public:
+  // The uniform grid of a scene's time section.
+  explicit StepGrid(const config::TimeSpec& time);
+  // The uniform grid with every event strictly inside (start, end) a boundary of its own.
+  // An event closer to a uniform instant than `snap` (a fraction of H) is that instant
+  // (no step shorter than snap H is made). Events need not be sorted; duplicates merge.
+  static StepGrid landing_on(const config::TimeSpec& time, std::span<const double> events, double snap = 1e-6);
+
+  std::uint64_t steps() const { return steps_; }  // n: instants 0 .. n
+  double start() const { return t0_; }
+  double end() const { return time(steps_); }
+  double nominal_step() const { return h_; }
+  bool uniform() const { return instants_.empty(); }
+
+  // t_k, for k in 0 .. steps().
+  double time(std::uint64_t k) const {
+    return instants_.empty() ? t0_ + static_cast<double>(k) * h_ : instants_[k];
+  }
+  // t_k+1 - t_k; on a uniform grid H itself (not the difference, which may round).
+  double step_length(std::uint64_t k) const { return instants_.empty() ? h_ : instants_[k + 1] - instants_[k]; }
+  // The step whose instant is t (as computed by time(k)); nullopt when t is no instant.
+  std::optional<std::uint64_t> step_at(double t) const;
+
+ private:
+  StepGrid(double t0, double h, std::uint64_t steps) : t0_(t0), h_(h), steps_(steps) {}
+  double t0_, h_;
+  std::uint64_t steps_;
+  std::vector<double> instants_;  // empty: uniform
+};
+
+}  // namespace mechsim::cosim

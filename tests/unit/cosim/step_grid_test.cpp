@@ -1,0 +1,50 @@
+// The macro-step instants every node, the reference and the tools share (step_grid.h).
+#include "mechsim/cosim/step_grid.h"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+namespace mechsim::cosim {
+namespace {
+
+TEST(StepGrid, UniformInstantsAreComputedFromTheIndexNotAccumulated) {
+  const StepGrid grid(config::TimeSpec{0.5, 2.5, 1e-3});
+  EXPECT_TRUE(grid.uniform());
+  EXPECT_EQ(grid.steps(), 2000u);
+  double accumulated = 0.5;
+  for (std::uint64_t k = 1; k <= grid.steps(); ++k) accumulated += 1e-3;
+  EXPECT_EQ(grid.time(2000), 0.5 + 2000.0 * 1e-3);  // the index formula, bit for bit
+  EXPECT_NE(grid.time(2000), accumulated);           // which accumulation is not
+  EXPECT_EQ(grid.step_length(7), 1e-3);
+  EXPECT_EQ(grid.step_at(grid.time(1234)), 1234u);
+  EXPECT_FALSE(grid.step_at(0.5 + 1.5e-3).has_value());
+  EXPECT_FALSE(grid.step_at(3.0).has_value());
+}
+
+TEST(StepGrid, AnEventBecomesABoundaryAndTheStepBeforeItEndsThere) {
+  const std::vector<double> events{0.555, 0.25, 7.0, -1.0};  // unsorted; two outside the run
+  const StepGrid grid = StepGrid::landing_on({0.0, 1.0, 0.1}, events);
+  EXPECT_FALSE(grid.uniform());
+  EXPECT_EQ(grid.steps(), 12u);  // 10 uniform steps, two of them split
+  const std::vector<double> expected{0.0, 0.1, 0.2, 0.25, 0.3, 0.4, 0.5, 0.555, 0.6, 0.7, 0.8, 0.9, 1.0};
+  for (std::uint64_t k = 0; k <= grid.steps(); ++k) EXPECT_NEAR(grid.time(k), expected[k], 1e-15) << k;
+  // The uniform instants stay the index formula's (a node and the reference agree on them).
+  EXPECT_EQ(grid.time(4), 3 * 0.1);
+  EXPECT_NEAR(grid.step_length(2), 0.05, 1e-15);
+  EXPECT_EQ(grid.step_at(0.555), 7u);
+  EXPECT_EQ(grid.end(), 1.0);
+}
+
+TEST(StepGrid, EventsOnOrNearlyOnAUniformInstantAddNoStep) {
+  // 0.3 computed otherwise than 3 * 0.1 differs in the last bit; 1e-9 s is a millionth of
+  // H = 1 ms: neither is worth a step of its own. Two events closer than that merge.
+  const std::vector<double> events{0.1 + 0.2, 0.5 + 1e-9, 0.71, 0.71 + 1e-12};
+  const StepGrid grid = StepGrid::landing_on({0.0, 1.0, 0.1}, events);
+  EXPECT_EQ(grid.steps(), 11u);
+  EXPECT_EQ(grid.step_at(0.71), 8u);
+  EXPECT_TRUE(StepGrid::landing_on({0.0, 1.0, 0.1}, std::vector<double>{}).uniform());
+}
+
+}  // namespace
+}  // namespace mechsim::cosim
