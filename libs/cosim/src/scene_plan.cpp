@@ -6,6 +6,7 @@
 #include <functional>
 #include <map>
 #include <set>
+#include <stdexcept>
 
 namespace mechsim::cosim {
 
@@ -108,7 +109,16 @@ ScenePlan ScenePlan::build(const config::Scene& scene) {
         if (coupling) refuse(scene, c.key_path + ".coupling", "expected at most one coupling element per participant");
         coupling = &*c.coupling;
       }
-    node.block = node.type->make_block(spec.params, coupling);
+    try {
+      node.block = node.type->make_block(spec.params, coupling);
+    } catch (const std::invalid_argument& e) {
+      // A model's own check of its parameters (libs/models validate()): the scene's error,
+      // named by the participant's params (found by tests/fuzz/scene_fuzz: overlapping
+      // follower loads ended the process instead).
+      refuse(scene, spec.key_path + ".params", std::string("parameters a ") + spec.type + " accepts (" + e.what() + ")");
+    } catch (const std::domain_error& e) {  // parameters outside what the model describes
+      refuse(scene, spec.key_path + ".params", std::string("parameters a ") + spec.type + " accepts (" + e.what() + ")");
+    }
     node.topic = spec.name + "/" + node.type->topic_suffix;
     for (const auto& field : node.type->publishes->fields) {
       // -1: a field this configuration does not compute (published as NaN).

@@ -61,6 +61,19 @@ TEST(SceneValidation, NonPhysicalValues) {
   expect_refused(cam_press_with("end: 2 s", "end: 2.0005 s"), "time.end", "whole number of steps");
 }
 
+TEST(SceneValidation, OverlappingFollowerLoads) {
+  expect_refused(cam_press_with("{from: 100 deg, to: 120 deg", "{from: 99 deg, to: 120 deg"),
+                 "participants.follower.params.loads", "overlaps [45.000000, 100.000000) deg");
+}
+
+// What a model's own parameter check refuses (here a load beyond one revolution, which the
+// parser lets through) is the scene's error at the participant's params, not an exception
+// of another kind (tests/fuzz/scene_fuzz found the process ending on one).
+TEST(SceneValidation, AModelsOwnParameterCheckNamesTheParticipant) {
+  expect_refused(cam_press_with("{from: 180 deg, to: 210 deg", "{from: 180 deg, to: 400 deg"),
+                 "participants.follower.params", "0 <= start < end <= 360");
+}
+
 TEST(SceneValidation, UnknownNodeType) {
   expect_refused(cam_press_with("type: follower", "type: folower"), "participants.follower.type", "node type");
 }

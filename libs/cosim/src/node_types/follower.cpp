@@ -2,6 +2,7 @@
 // (FollowerState). Reads the cam shaft's CamState. `model: rigid` is the kinetostatic
 // follower of spec cam.md §3; `model: flexible` the mass behind a follower stiffness with
 // a unilateral contact (§5 model (b)), with lift-off and landing events.
+#include <numbers>
 #include <optional>
 #include <string>
 
@@ -71,6 +72,13 @@ FollowerConfig parse_follower_params(const ConfigNode& p) {
         load.end_force_n = l.quantity("end_force", dim::force);
       }
       if (!(load.end_rad > load.start_rad)) l.child("to").fail("expected an end angle after 'from'");
+      // The loads act on half-open intervals of the cam angle that must not overlap.
+      for (const auto& other : params.loads)
+        if (load.start_rad < other.end_rad && other.start_rad < load.end_rad)
+          l.fail("expected a load interval that overlaps no other; [" + std::to_string(load.start_rad * 180 / std::numbers::pi) +
+                 ", " + std::to_string(load.end_rad * 180 / std::numbers::pi) + ") deg overlaps [" +
+                 std::to_string(other.start_rad * 180 / std::numbers::pi) + ", " +
+                 std::to_string(other.end_rad * 180 / std::numbers::pi) + ") deg");
       params.loads.push_back(load);
     }
   }
