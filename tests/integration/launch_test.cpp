@@ -34,7 +34,9 @@ TEST_F(Launch, CamPressRunsDistributedAndReproducesTheReference) {
   json s = summary("a");
   EXPECT_EQ(s["status"], "ok");
   EXPECT_EQ(s["scene"], "cam_press");
-  EXPECT_EQ(s["steps"], 2000);
+  // 2000 steps of 1 ms, and one landed on each load boundary off the grid (100, 120, 210 deg).
+  EXPECT_EQ(s["steps"], 2003);
+  EXPECT_EQ(s["scheduled_events"].size(), 5u);
   EXPECT_DOUBLE_EQ(s["simulated_time_s"].get<double>(), 2.0);
   EXPECT_GT(s["steps_per_second"].get<double>(), 0.0);
   EXPECT_EQ(s["provenance"]["scene_sha256"].get<std::string>().size(), 64u);
@@ -44,12 +46,15 @@ TEST_F(Launch, CamPressRunsDistributedAndReproducesTheReference) {
   EXPECT_EQ(s["signals"]["follower.contact_force"]["max_abs_error"].get<double>(), 0.0);
   EXPECT_EQ(s["signals"]["follower.drive_torque"]["max_abs_error"].get<double>(), 0.0);
   // Jacobi edge follower -> cam, held: the cam reports the drive torque one macro step
-  // late. The error is real (> 0) and is dominated by the torque jumps at the load
-  // boundaries (6 per cycle, up to ~9 N m on a 19 N m range): RMS over 2001 samples is
-  // about sqrt(6/2001) * 9/19 = 2.6 % at most; anything above means more than a one-step lag.
-  const double lag_rms = s["signals"]["cam.shaft_torque"]["rms_rel_error"].get<double>();
-  EXPECT_GT(lag_rms, 0.0);
-  EXPECT_LT(lag_rms, 0.026);
+  // late. At the load boundaries the steps land on the jump and the cam's row there is
+  // evaluated after it (with the follower's sample of that instant), so what is left is the
+  // one-step lag of a smooth torque: 0.475 % of range, the figure the launcher gave "away
+  // from the jumps" before the steps landed on them (and it halves with H: bench order 0.99).
+  // A jump crossed one step late costs 24.5 % (the error before this landed). 1 % is the
+  // issue's target and well apart from both.
+  const double lag_max = s["signals"]["cam.shaft_torque"]["max_rel_error"].get<double>();
+  EXPECT_GT(lag_max, 0.0);
+  EXPECT_LT(lag_max, 0.01);
   // Spec cam.md §3: with k = 9 N/mm and F0 = 125 N the contact force stays positive over
   // the whole cycle; its minimum lies at the end of the fall under the -120 N load.
   const json& min_n = s["report"][0];

@@ -446,13 +446,13 @@ RunResult Bench::run_inproc_point(const RunSpec& r, const std::string& run_dir) 
   std::unique_ptr<config::Scene> scene;
   try {
     scene = std::make_unique<config::Scene>(config::load_scene(variant_files_[r.variant], run_overrides(r, true)));
-    cosim::ScenePlan::build(*scene);  // validation (run_inproc builds its own)
+    // Validation (run_inproc builds its own), and the grid's step count (events land on it).
+    res.macro_steps = static_cast<long>(cosim::ScenePlan::build(*scene).grid()->steps());
   } catch (const std::exception& e) {
     res.status = "refused";
     res.reason = e.what();
     return res;
   }
-  res.macro_steps = scene->time.steps();
   fs::create_directories(run_dir);
   cosim::InprocRunOptions io;
   io.run_dir = run_dir;

@@ -232,7 +232,7 @@ void Run::print_progress(double since_start, bool final_line) {
     realtime = buf;
   }
   std::fprintf(stderr, "\r[%s] t = %.4f / %.4f s  step %llu / %ld  %.0f steps/s  rtf %.2f%s   %s", scene_.name.c_str(), t,
-               scene_.time.end, static_cast<unsigned long long>(step), scene_.time.steps(), rate, rtf, realtime.c_str(),
+               scene_.time.end, static_cast<unsigned long long>(step), static_cast<long>(plan_.grid()->steps()), rate, rtf, realtime.c_str(),
                final_line ? "\n" : "");
   std::fflush(stderr);
 }
@@ -626,9 +626,14 @@ json Run::summarise(const RunOutcome& out) {
   s["status"] = out.ok ? "ok" : "failed";
   s["macro_step_s"] = scene_.time.step;
   s["simulated_time_s"] = scene_.time.end - scene_.time.start;
-  s["steps"] = scene_.time.steps();
+  s["steps"] = plan_.grid()->steps();
+  if (!plan_.scheduled_events().empty()) {  // where the grid lands a boundary (docs/accuracy.md)
+    nlohmann::json events = nlohmann::json::array();
+    for (const auto& e : plan_.scheduled_events()) events.push_back({{"participant", e.participant}, {"t_s", e.t}});
+    s["scheduled_events"] = events;
+  }
   s["wall_time_s"] = out.wall_time_s;
-  s["steps_per_second"] = out.wall_time_s > 0 ? static_cast<double>(scene_.time.steps()) / out.wall_time_s : 0.0;
+  s["steps_per_second"] = out.wall_time_s > 0 ? static_cast<double>(plan_.grid()->steps()) / out.wall_time_s : 0.0;
   s["real_time_factor"] = out.wall_time_s > 0 ? (scene_.time.end - scene_.time.start) / out.wall_time_s : 0.0;
   if (!out.ok)
     s["failure"] = {{"node", out.failed_node}, {"last_step", out.failed_step}, {"reason", out.reason}};
@@ -678,7 +683,7 @@ json Run::summarise(const RunOutcome& out) {
   s["events"] = events;
   std::vector<std::string> node_names;
   for (const auto& p : processes_.processes()) node_names.push_back(p.name);
-  if (scene_.mode == "realtime") s["realtime"] = realtime_summary(scene_, node_names, run_dir_, warnings_);
+  if (scene_.mode == "realtime") s["realtime"] = realtime_summary(scene_, *plan_.grid(), node_names, run_dir_, warnings_);
   s["process_realtime"] = process_settings_summary(node_names, run_dir_);
   return s;
 }
@@ -902,7 +907,7 @@ int Run::execute() {
   // Human summary.
   if (out.ok) {
     std::printf("run %s of '%s': %ld steps of %g s in %.3f s wall: %.0f steps/s, real-time factor %.2f\n",
-                hex_id(run_id_).c_str(), scene_.name.c_str(), scene_.time.steps(), scene_.time.step, out.wall_time_s,
+                hex_id(run_id_).c_str(), scene_.name.c_str(), static_cast<long>(plan_.grid()->steps()), scene_.time.step, out.wall_time_s,
                 summary["steps_per_second"].get<double>(), summary["real_time_factor"].get<double>());
     for (auto& [name, e] : summary["signals"].items()) {
       const std::string unit = e["unit"].get<std::string>();

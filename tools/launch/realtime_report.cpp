@@ -39,7 +39,8 @@ std::vector<std::string> realtime_rights_problems(const config::Scene& scene) {
   return problems;
 }
 
-json realtime_summary(const config::Scene& scene, const std::vector<std::string>& nodes, const std::string& run_dir,
+json realtime_summary(const config::Scene& scene, const cosim::StepGrid& grid, const std::vector<std::string>& nodes,
+                      const std::string& run_dir,
                       const std::vector<std::string>& warnings) {
   json per_node = json::object();
   long long missed = 0;
@@ -56,7 +57,7 @@ json realtime_summary(const config::Scene& scene, const std::vector<std::string>
     jitter_std = std::max(jitter_std, f.value("period_jitter_std_s", 0.0));
     jitter_max = std::max(jitter_max, f.value("period_jitter_max_s", 0.0));
     if (f.contains("worst"))
-      for (auto& w : f["worst"]) w["t_s"] = scene.time.start + w.value("step", 0.0) * scene.time.step;
+      for (auto& w : f["worst"]) w["t_s"] = grid.time(std::min<std::uint64_t>(w.value("step", std::uint64_t{0}), grid.steps()));
     per_node[name] = std::move(f);
   }
   return {{"rtf_requested", scene.rtf},

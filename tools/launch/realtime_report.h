@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "mechsim/config/scene.h"
+#include "mechsim/cosim/step_grid.h"
 
 namespace mechsim::launch {
 
@@ -20,7 +21,8 @@ std::vector<std::string> realtime_rights_problems(const config::Scene& scene);
 
 // {"rtf_requested", ..., "missed_deadlines", "lateness_p99_s", "lateness_max_s",
 //  "period_jitter_std_s", "period_jitter_max_s", "nodes": {node: figures}} of a paced run.
-nlohmann::json realtime_summary(const config::Scene& scene, const std::vector<std::string>& nodes, const std::string& run_dir,
+nlohmann::json realtime_summary(const config::Scene& scene, const cosim::StepGrid& grid, const std::vector<std::string>& nodes,
+                                const std::string& run_dir,
                                 const std::vector<std::string>& warnings);
 
 // {node: {"policy", "priority", "memory_locked", "cpus"}} of the nodes that applied settings.

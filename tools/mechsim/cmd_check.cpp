@@ -17,7 +17,9 @@ void add_check_command(CLI::App& app, int& exit_code) {
       config::Scene scene = config::load_scene(args->scene, args->overrides());
       cosim::ScenePlan plan = cosim::ScenePlan::build(scene);
       std::printf("%s: scene '%s' is valid: %ld steps of %g s, %zu participants\n", scene.file.c_str(),
-                  scene.name.c_str(), scene.time.steps(), scene.time.step, plan.nodes().size());
+                  scene.name.c_str(), static_cast<long>(plan.grid()->steps()), scene.time.step, plan.nodes().size());
+      for (const auto& e : plan.scheduled_events())
+        std::printf("  a step lands on t = %.9g s (scheduled by %s)\n", e.t, e.participant.c_str());
       for (const auto& node : plan.nodes()) {
         std::printf("  %-12s %-12s publishes %-24s (%d states, %s)\n", node.name().c_str(), node.type->name.c_str(),
                     node.topic.c_str(), node.block->num_states(), node.spec->vendor.c_str());

@@ -492,7 +492,7 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
     const config::RealtimeSpec& rt = scene.realtime;
     if (scene.mode == "realtime") {
       if (start_message.start_wall_ns == 0) throw std::runtime_error("realtime mode without a start time in the start command");
-      pacer.emplace(start_message.start_wall_ns, scene.time.start, scene.time.step, scene.rtf);
+      pacer.emplace(start_message.start_wall_ns, plan.grid(), scene.rtf);
     }
     bool keep_up_checked = false;
     auto pace = [&](std::uint64_t k) {
@@ -530,7 +530,8 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
       write_own(header, values);
       keep_sent(false, header, values);
       if (pacer) pace(header.step);
-      if (log) log->append(header.t, stepper.outputs());
+      // An event instant's row is logged when the next step starts (NodeStepper::event_row).
+      if (log && !stepper.grid().is_event(header.step)) log->append(header.t, stepper.outputs());
       beat.status().header.step = header.step;
       beat.status().header.t = header.t;
     };
@@ -651,6 +652,8 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
       predict_if_due();
       while (initialised && stepper.can_step() && !holding()) {  // a drain below may start a hold
         stepper.step(values);
+        if (log)
+          if (const auto* row = stepper.event_row()) log->append(stepper.grid().time(stepper.step() - 1), *row);
         publish();
         last_step_taken = Clock::now();
         if (std::exchange(announce_step, false)) beat.send();

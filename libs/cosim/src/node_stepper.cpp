@@ -16,9 +16,6 @@ solve::SolverOptions solver_options(const config::SolverSpec& spec) {
   return o;
 }
 
-NodeStepper::NodeStepper(PlannedNode& node, const config::TimeSpec& time)
-    : NodeStepper(node, std::make_shared<const StepGrid>(time)) {}
-
 NodeStepper::NodeStepper(PlannedNode& node, std::shared_ptr<const StepGrid> grid) : node_(node), grid_(std::move(grid)) {
   const models::Block& block = *node.block;
   for (const auto& edge : node.inputs) {
@@ -33,6 +30,8 @@ NodeStepper::NodeStepper(PlannedNode& node, std::shared_ptr<const StepGrid> grid
   defaults_ = block.default_inputs();
   u_ = defaults_;
   y_.assign(block.num_outputs(), 0.0);
+  event_row_.assign(y_.size(), 0.0);  // sized now: a real-time step must not allocate
+  event_inputs_.assign(u_.size(), 0.0);
   x_.assign(block.num_states(), 0.0);
   block.initial_state(grid_->start(), x_);
   if (node.cut) cut_side_ = std::make_unique<coupling::InterfaceSide>(*node.block, node.cut->torque_input,
@@ -129,6 +128,14 @@ void NodeStepper::step(std::vector<double>& topic_values) {
   // Index-based time, never accumulated (the grid's t_k+1).
   const double t_next = grid_->time(k + 1);
   const auto inputs = [this, k](double t, std::span<double> u) { inputs_at(t, k, u); };
+  event_row_ready_ = grid_->is_event(k);
+  if (event_row_ready_) {
+    std::copy(y_.begin(), y_.end(), event_row_.begin());
+    if (!cut_side_) {
+      inputs_at(time(), k, event_inputs_);
+      node_.block->calc_outputs(time(), integrator_->state(), event_inputs_, event_row_);
+    }
+  }
   if (cut_side_) {
     // Both sides solve the same system with the "+" side's prediction first: equal torques.
     const PlannedCut& cut = *node_.cut;

@@ -15,13 +15,13 @@ std::int64_t Pacer::now_ns() {
   return static_cast<std::int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
 }
 
-Pacer::Pacer(std::int64_t start_wall_ns, double t0, double macro_step, double rtf)
-    : start_ns_(start_wall_ns), t0_(t0), h_(macro_step), rtf_(rtf), window_wall_(start_wall_ns),
+Pacer::Pacer(std::int64_t start_wall_ns, std::shared_ptr<const StepGrid> grid, double rtf)
+    : start_ns_(start_wall_ns), grid_(std::move(grid)), h_(grid_->nominal_step()), rtf_(rtf), window_wall_(start_wall_ns),
       previous_window_wall_(start_wall_ns) {}
 
 std::int64_t Pacer::deadline_ns(std::uint64_t k) const {
-  // From the step index, never accumulated: (t_k - t0) / rtf = k H / rtf.
-  return start_ns_ + static_cast<std::int64_t>(std::llround(static_cast<double>(k) * h_ / rtf_ * 1e9));
+  // From the step index, never accumulated: (t_k - t0) / rtf.
+  return start_ns_ + static_cast<std::int64_t>(std::llround(simulated(k) / rtf_ * 1e9));
 }
 
 void Pacer::wait_for_deadline(std::uint64_t k, double spin_lead_s) const {
@@ -42,7 +42,7 @@ double Pacer::published(std::uint64_t k) {
   if (late > least->lateness) *least = {k, late};
   if (late > h_ / rtf_) ++missed_;
   if (last_publication_ns_ != 0 && k == last_k_ + 1) {
-    const double deviation = static_cast<double>(now - last_publication_ns_) * 1e-9 - h_ / rtf_;
+    const double deviation = static_cast<double>(now - last_publication_ns_) * 1e-9 - grid_->step_length(last_k_) / rtf_;
     ++periods_;
     const double delta = deviation - jitter_mean_;
     jitter_mean_ += delta / static_cast<double>(periods_);
@@ -51,7 +51,7 @@ double Pacer::published(std::uint64_t k) {
   }
   last_publication_ns_ = now;
   last_k_ = k;
-  const double sim = static_cast<double>(k) * h_;
+  const double sim = simulated(k);
   if (now - window_wall_ >= 1'000'000'000) {
     previous_window_wall_ = window_wall_;
     previous_window_sim_ = window_sim_;
@@ -80,7 +80,7 @@ RealtimeFigures Pacer::figures() const {
   f.lateness_max = histogram_.max();
   f.paced_wall_time = static_cast<double>(last_publication_ns_ - start_ns_) * 1e-9;
   const double wall = elapsed();
-  const double sim = static_cast<double>(last_k_) * h_;
+  const double sim = simulated(last_k_);
   f.rtf_achieved = wall > 0 ? sim / wall : 0.0;
   const double window_wall = static_cast<double>(now_ns() - previous_window_wall_) * 1e-9;
   f.rtf_window = window_wall > 0 ? (sim - previous_window_sim_) / window_wall : 0.0;

@@ -3,8 +3,12 @@
 #include "mechsim/config/units.h"
 #include "mechsim/cosim/nc_params.h"
 
+#include <algorithm>
+#include <cmath>
 #include <functional>
+#include <limits>
 #include <map>
+#include <numbers>
 #include <set>
 #include <stdexcept>
 
@@ -89,10 +93,60 @@ void plan_interface_jacobian_cut(const config::Scene& scene, const config::Conne
 
 }  // namespace
 
+namespace {
+
+// The times in (t0, t_end) at which a shaft turning as `rotation` brings the angle to
+// `event` (rad in [0, 2 pi)), each moved to the first double at which `reached` says the
+// block sees the angle on the event's far side (a few ulps at most).
+std::vector<double> times_of_angle(const models::Block::UniformRotation& rotation, double event, double t0, double t_end,
+                                   const std::function<bool(double theta)>& reached) {
+  std::vector<double> times;
+  if (!(rotation.speed > 0)) return times;  // a shaft at rest or turning back: not planned
+  const double two_pi = 2.0 * std::numbers::pi;
+  const double first_turn = std::floor((rotation.angle(t0) - event) / two_pi);
+  for (double n = first_turn;; n += 1.0) {
+    double t = (event + n * two_pi - rotation.angle0) / rotation.speed;
+    if (t >= t_end) break;
+    const double up = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < 64 && !reached(rotation.angle(t)); ++i) t = std::nextafter(t, up);
+    for (int i = 0; i < 64 && reached(rotation.angle(std::nextafter(t, -up))); ++i) t = std::nextafter(t, -up);
+    if (t > t0 && t < t_end) times.push_back(t);
+  }
+  return times;
+}
+
+}  // namespace
+
+void ScenePlan::land_on_scheduled_events() {
+  const config::TimeSpec& time = scene_->time;
+  for (const auto& node : nodes_) {
+    for (double t : node.block->scheduled_events(time.start, time.end)) scheduled_events_.push_back({node.name(), t});
+    // Angle events, where the block's `angle` input is a uniformly turning shaft's angle.
+    const std::vector<double> angles = node.block->angle_events();
+    const int angle_input = node.block->input_index("angle");
+    if (angles.empty() || angle_input < 0) continue;
+    for (const auto& edge : node.inputs)
+      for (const auto& [field, input] : edge.field_to_input) {
+        if (input != angle_input || edge.type->fields[static_cast<std::size_t>(field)].name != "angle") continue;
+        const auto rotation = this->node(edge.from).block->uniform_rotation();
+        if (!rotation) continue;
+        for (double angle : angles)
+          for (double t : times_of_angle(*rotation, angle, time.start, time.end,
+                                         [&](double theta) { return node.block->angle_event_reached(theta, angle); }))
+            scheduled_events_.push_back({node.name(), t});
+      }
+  }
+  std::sort(scheduled_events_.begin(), scheduled_events_.end(),
+            [](const ScheduledEvent& a, const ScheduledEvent& b) { return a.t < b.t; });
+  std::vector<double> times;
+  for (const auto& e : scheduled_events_) times.push_back(e.t);
+  // Every node plans the same scene, so every node lands on the same events: no message.
+  grid_ = std::make_shared<const StepGrid>(StepGrid::landing_on(time, times));
+}
+
 ScenePlan ScenePlan::build(const config::Scene& scene) {
   ScenePlan plan;
   plan.scene_ = &scene;
-  plan.grid_ = std::make_shared<const StepGrid>(scene.time);
   for (const auto& spec : scene.participants) {
     PlannedNode node;
     node.spec = &spec;
@@ -252,6 +306,7 @@ ScenePlan ScenePlan::build(const config::Scene& scene) {
     for (const auto* list : {&r.supplied, &r.dissipated, &r.stored})
       for (const auto& s : *list) plan.resolve(s);
   }
+  plan.land_on_scheduled_events();  // after the edges: angle events follow the `angle` input to its publisher
   return plan;
 }
 

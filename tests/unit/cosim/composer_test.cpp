@@ -24,7 +24,7 @@ TEST(Composer, ReferenceOfTheCamPressMatchesTheClosedFormKinetostatics) {
   const auto& n = ref.log.data[ref.log.column("follower.contact_force")];
   const auto& m_shaft = ref.log.data[ref.log.column("cam.shaft_torque")];
   const auto& m_drive = ref.log.data[ref.log.column("follower.drive_torque")];
-  ASSERT_EQ(t.size(), 2001u);
+  ASSERT_EQ(t.size(), 2004u);  // 2000 steps of 1 ms, 3 landed on load boundaries off the grid
   double worst = 0;
   for (std::size_t k = 0; k < t.size(); ++k) {
     const double theta = press.speed_rad_s * t[k];

@@ -18,8 +18,8 @@ struct TwoNodes {
   explicit TwoNodes(const std::string& path)
       : scene(std::make_unique<config::Scene>(config::load_scene(path))),
         plan(ScenePlan::build(*scene)),
-        cam(plan.node("cam"), scene->time),
-        follower(plan.node("follower"), scene->time) {}
+        cam(plan.node("cam"), plan.grid()),
+        follower(plan.node("follower"), plan.grid()) {}
   std::unique_ptr<config::Scene> scene;
   ScenePlan plan;
   NodeStepper cam, follower;

@@ -101,7 +101,7 @@ long allocations_in_steady_state(const std::string& scene, std::uint64_t warm, s
     for (const auto& o : node.block->outputs()) columns.push_back(o.name);
     logs.push_back(std::make_unique<OutputLogWriter>((dir / (node.name() + ".bin")).string(), columns,
                                                     OutputLogWriter::Mode::background));  // as a paced node writes it
-    pacers.push_back(std::make_unique<Pacer>(Pacer::now_ns(), 0.0, run.scene().time.step, 1e6));
+    pacers.push_back(std::make_unique<Pacer>(Pacer::now_ns(), run.plan().grid(), 1e6));
   }
   const double h = run.scene().time.step;
   run.on_publish = [&](std::size_t i, std::uint64_t k, const std::vector<double>& outputs) {

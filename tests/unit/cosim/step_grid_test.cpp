@@ -33,16 +33,29 @@ TEST(StepGrid, AnEventBecomesABoundaryAndTheStepBeforeItEndsThere) {
   EXPECT_EQ(grid.time(4), 3 * 0.1);
   EXPECT_NEAR(grid.step_length(2), 0.05, 1e-15);
   EXPECT_EQ(grid.step_at(0.555), 7u);
+  EXPECT_TRUE(grid.is_event(3));
+  EXPECT_TRUE(grid.is_event(7));
+  EXPECT_FALSE(grid.is_event(4));
   EXPECT_EQ(grid.end(), 1.0);
 }
 
 TEST(StepGrid, EventsOnOrNearlyOnAUniformInstantAddNoStep) {
-  // 0.3 computed otherwise than 3 * 0.1 differs in the last bit; 1e-9 s is a millionth of
-  // H = 1 ms: neither is worth a step of its own. Two events closer than that merge.
+  // An event on a uniform instant marks it and the grid stays uniform (bit for bit the
+  // scene's own). 1e-9 s past an instant is a hundred-millionth of H = 0.1 s: not worth a
+  // step of its own, it takes the instant's place (the event's double is the first on its
+  // far side). Two events closer than that merge.
+  const StepGrid exact = StepGrid::landing_on({0.0, 1.0, 0.1}, std::vector<double>{3 * 0.1});
+  EXPECT_TRUE(exact.uniform());
+  EXPECT_TRUE(exact.is_event(3));
+  EXPECT_FALSE(exact.is_event(4));
+
   const std::vector<double> events{0.1 + 0.2, 0.5 + 1e-9, 0.71, 0.71 + 1e-12};
   const StepGrid grid = StepGrid::landing_on({0.0, 1.0, 0.1}, events);
   EXPECT_EQ(grid.steps(), 11u);
+  EXPECT_EQ(grid.time(5), 0.5 + 1e-9);
   EXPECT_EQ(grid.step_at(0.71), 8u);
+  EXPECT_EQ(grid.event_count(), 3u);
+  for (std::uint64_t k : {3u, 5u, 8u}) EXPECT_TRUE(grid.is_event(k)) << k;
   EXPECT_TRUE(StepGrid::landing_on({0.0, 1.0, 0.1}, std::vector<double>{}).uniform());
 }
 

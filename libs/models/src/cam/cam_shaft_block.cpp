@@ -119,7 +119,7 @@ void CamShaftBlock::calc_outputs(double t, std::span<const double> x, std::span<
     // Constant speed: the angle is a function of time, not an integrated state, so every
     // process (and the reference) computes bit-identical angles at the same t. Integrating
     // it would let rounding decide on which side of a load boundary a sample falls.
-    theta = params_.initial_angle + params_.speed * t;
+    theta = uniform_rotation()->angle(t);
     omega = params_.speed;
     omega_dot = 0.0;
     torque = u[in_load_torque];  // ω̇ = 0: the reflected inertia takes no torque
@@ -137,6 +137,11 @@ void CamShaftBlock::calc_outputs(double t, std::span<const double> x, std::span<
   y[out_drive_load_torque] = load_torque_out;
   y[out_drive_load_inertia] = load_inertia_out;
   y[out_kinetic_energy] = 0.5 * params_.inertia_kgm2 * omega * omega;
+}
+
+std::optional<Block::UniformRotation> CamShaftBlock::uniform_rotation() const {
+  if (is_driven() || has_dynamic_drive()) return std::nullopt;
+  return UniformRotation{params_.initial_angle, params_.speed};
 }
 
 }  // namespace mechsim::models::cam

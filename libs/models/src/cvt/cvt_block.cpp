@@ -412,4 +412,11 @@ void CvtBlock::calc_outputs(double t, std::span<const double> x, std::span<const
   y[out_.outside_model] = (sol.flags & (kOutsideValidatedRange | kBadInput | kNoSolution)) ? 1.0 : 0.0;
 }
 
+std::vector<double> CvtBlock::scheduled_events(double t0, double t_end) const {
+  std::vector<double> inside;
+  for (const auto& point : p_.ratio_schedule)
+    if (point.first > t0 && point.first < t_end) inside.push_back(point.first);
+  return inside;
+}
+
 }  // namespace mechsim::models::cvt

@@ -33,10 +33,30 @@ void validate(const FollowerParams& params) {
   }
 }
 
-double functional_load(const std::vector<FunctionalLoad>& loads, double theta_rad) {
+double angle_in_revolution(double theta_rad) {
   double theta = std::fmod(theta_rad, two_pi);
   if (theta < 0.0) theta += two_pi;
   if (theta >= two_pi) theta = 0.0;
+  return theta;
+}
+
+std::vector<double> load_boundaries(const std::vector<FunctionalLoad>& loads) {
+  std::vector<double> at;
+  for (const FunctionalLoad& l : loads)
+    for (double b : {l.start_rad, l.end_rad}) at.push_back(b >= two_pi ? b - two_pi : b);
+  std::sort(at.begin(), at.end());
+  at.erase(std::unique(at.begin(), at.end()), at.end());
+  return at;
+}
+
+bool angle_at_or_past(double theta_rad, double boundary_rad) {
+  double past = angle_in_revolution(theta_rad) - boundary_rad;
+  if (past < 0.0) past += two_pi;
+  return past < std::numbers::pi;
+}
+
+double functional_load(const std::vector<FunctionalLoad>& loads, double theta_rad) {
+  const double theta = angle_in_revolution(theta_rad);
   double total = 0.0;
   for (const FunctionalLoad& l : loads)
     if (theta >= l.start_rad && theta < l.end_rad) total += l.at(theta);

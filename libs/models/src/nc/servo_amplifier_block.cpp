@@ -129,4 +129,12 @@ void ServoAmplifierBlock::restore_discrete_state(std::span<const double> saved) 
   held_ = {{saved[0], saved[1], saved[2], saved[3]}, saved[4], saved[5], saved[6]};
 }
 
+std::vector<double> ServoAmplifierBlock::scheduled_events(double t0, double t_end) const {
+  std::vector<double> inside;
+  if (params_.setpoint_source != SetpointSource::internal) return inside;
+  for (double t : params_.setpoint.corners())
+    if (t > t0 && t < t_end) inside.push_back(t);
+  return inside;
+}
+
 }  // namespace mechsim::models::nc

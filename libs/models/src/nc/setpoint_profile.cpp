@@ -30,6 +30,22 @@ void SetpointProfile::validate() const {
     throw std::invalid_argument("setpoint: acceleration must be > 0");
 }
 
+std::vector<double> SetpointProfile::corners() const {
+  switch (kind) {
+    case SetpointKind::step: return {start_time};
+    case SetpointKind::ramp: return {start_time, start_time + move_duration()};
+    case SetpointKind::trapezoid: {
+      const Trapezoid tr = trapezoid(*this);
+      std::vector<double> at{start_time, start_time + tr.accel_time};
+      // A triangle has no cruise (its computed cruise time is zero up to rounding).
+      if (tr.cruise_time > 1e-9 * tr.accel_time) at.push_back(start_time + tr.accel_time + tr.cruise_time);
+      at.push_back(start_time + move_duration());
+      return at;
+    }
+  }
+  return {};
+}
+
 double SetpointProfile::move_duration() const {
   switch (kind) {
     case SetpointKind::step: return 0.0;

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 namespace mechsim::models::nc {
 namespace {
@@ -64,6 +65,30 @@ TEST(SetpointProfileTest, VelocityIsTheDerivativeOfPosition) {
 TEST(SetpointProfileTest, RejectsNonPositiveLimits) {
   EXPECT_THROW((SetpointProfile{SetpointKind::ramp, 0, 1e-3, 0.0}.validate()), std::invalid_argument);
   EXPECT_THROW((SetpointProfile{SetpointKind::trapezoid, 0, 1e-3, 0.1, -1}.validate()), std::invalid_argument);
+}
+
+// The corners are where the run's grid lands a step (scheduled_events): the step itself,
+// the ramp's start and end, the trapezoid's four (three for a triangle). At each, position
+// or velocity changes its law: checked against the profile's own velocity just before and
+// after.
+TEST(SetpointProfileTest, CornersAreWherePositionOrVelocityIsNotSmooth) {
+  EXPECT_EQ((SetpointProfile{SetpointKind::step, 0.01, 1e-4}.corners()), std::vector<double>{0.01});
+  const SetpointProfile ramp{SetpointKind::ramp, 0.01, -2e-3, 0.1};
+  ASSERT_EQ(ramp.corners().size(), 2u);
+  EXPECT_NEAR(ramp.corners()[1], 0.03, tol);
+  const SetpointProfile trapezoid{SetpointKind::trapezoid, 0.0, 20e-3, 0.1, 1.0};
+  const std::vector<double> c = trapezoid.corners();
+  ASSERT_EQ(c.size(), 4u);
+  for (int i = 0; i < 4; ++i) EXPECT_NEAR(c[i], 0.1 * i, tol);
+  const double eps = 1e-7;
+  for (double t : {c[1], c[2]})  // acceleration switches: velocity continuous, slope changes
+    EXPECT_NEAR(trapezoid.velocity_at(t - eps), trapezoid.velocity_at(t + eps), 1e-6);
+  EXPECT_GT(trapezoid.velocity_at(c[0] + eps), 0.0);
+  EXPECT_EQ(trapezoid.velocity_at(c[3] + eps), 0.0);
+  // Too short to reach 0.1 m/s: a triangle, accelerate and decelerate, no cruise corner.
+  const SetpointProfile triangle{SetpointKind::trapezoid, 0.0, 1e-3, 0.1, 1.0};
+  ASSERT_EQ(triangle.corners().size(), 3u);
+  EXPECT_NEAR(triangle.corners()[2], 2 * std::sqrt(1e-3 / 1.0), tol);
 }
 
 }  // namespace

@@ -37,9 +37,8 @@ struct StepperSnapshot {
 
 class NodeStepper {
  public:
-  // `node` must outlive the stepper (it owns the block). Steps on the uniform grid of
-  // `time`, or on `grid` (every node of a run must step on the same grid).
-  NodeStepper(PlannedNode& node, const config::TimeSpec& time);
+  // `node` must outlive the stepper (it owns the block). `grid`: the plan's (ScenePlan::grid),
+  // the same for every node of the run.
   NodeStepper(PlannedNode& node, std::shared_ptr<const StepGrid> grid);
   const StepGrid& grid() const { return *grid_; }
 
@@ -67,6 +66,12 @@ class NodeStepper {
 
   // All block outputs at the current step (for the run folder), and solver statistics.
   const std::vector<double>& outputs() const { return y_; }
+  // After step() from an event instant t_k (grid().is_event(k)): the outputs to log for t_k,
+  // evaluated on the event's far side with the inputs of the step just taken at its start
+  // (a held or extrapolated Jacobi input is then the partner's step-k sample, computed after
+  // the event). The published step-k sample stays what it was. nullptr after other steps.
+  // A node on an interface-Jacobian cut logs its step-k outputs unchanged.
+  const std::vector<double>* event_row() const { return event_row_ready_ ? &event_row_ : nullptr; }
   const solve::SolverStats* solver_stats() const { return integrator_ ? &integrator_->stats() : nullptr; }
   std::vector<solve::EventRecord> take_events();
 
@@ -108,6 +113,8 @@ class NodeStepper {
   std::vector<InputChannel> channels_;
   std::unique_ptr<solve::BlockIntegrator> integrator_;
   std::vector<double> defaults_, u_, y_, x_, scratch_;
+  std::vector<double> event_inputs_, event_row_;
+  bool event_row_ready_ = false;
   std::uint64_t k_ = 0;
   bool initialised_ = false;
 };

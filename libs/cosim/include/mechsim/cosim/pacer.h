@@ -7,10 +7,12 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "mechsim/cosim/lateness_histogram.h"
+#include "mechsim/cosim/step_grid.h"
 
 namespace mechsim::cosim {
 
@@ -28,8 +30,9 @@ struct RealtimeFigures {
 
 class Pacer {
  public:
-  // start_wall_ns: Unix time (CLOCK_REALTIME) of step 0.
-  Pacer(std::int64_t start_wall_ns, double t0, double macro_step, double rtf);
+  // start_wall_ns: Unix time (CLOCK_REALTIME) of step 0; step k is due (t_k - t_0) / rtf
+  // later, t_k from the run's grid (a step shortened to land on an event is due earlier).
+  Pacer(std::int64_t start_wall_ns, std::shared_ptr<const StepGrid> grid, double rtf);
   // Sleeps until step k's deadline (returns at once when already late). With spin_lead > 0
   // it sleeps until spin_lead before the deadline and polls the clock from there: a timer
   // wake-up on a loaded or virtual machine is tens of microseconds late, a poll is not.
@@ -55,8 +58,10 @@ class Pacer {
   static std::int64_t now_ns();
 
  private:
+  double simulated(std::uint64_t k) const { return grid_->time(k) - grid_->start(); }
   std::int64_t start_ns_;
-  double t0_, h_, rtf_;
+  std::shared_ptr<const StepGrid> grid_;
+  double h_, rtf_;  // h_: the nominal step, what a deadline may be missed by
   LatenessHistogram histogram_;
   std::array<Late, kWorst> worst_{};  // unsorted; fixed size: no allocation per step
   long missed_ = 0;

@@ -61,8 +61,15 @@ class ScenePlan {
   static ScenePlan build(const config::Scene& scene);
 
   const config::Scene& scene() const { return *scene_; }
-  // The run's macro-step instants, the same for every node, the reference and the tools.
+  // The run's macro-step instants, the same for every node, the reference and the tools:
+  // the scene's uniform grid, landed on the participants' scheduled events.
   const std::shared_ptr<const StepGrid>& grid() const { return grid_; }
+  struct ScheduledEvent {
+    std::string participant;
+    double t = 0.0;  // s
+  };
+  // What the participants' blocks announced before the run (models::Block::scheduled_events).
+  const std::vector<ScheduledEvent>& scheduled_events() const { return scheduled_events_; }
   std::vector<PlannedNode>& nodes() { return nodes_; }
   const std::vector<PlannedNode>& nodes() const { return nodes_; }
   const PlannedNode& node(const std::string& name) const;
@@ -71,8 +78,12 @@ class ScenePlan {
   std::pair<int, int> resolve(const config::SignalRef& ref) const;
 
  private:
+  // Collects the blocks' scheduled events (and their angle events where a uniformly turning
+  // shaft feeds them) and lands the grid on them.
+  void land_on_scheduled_events();
   const config::Scene* scene_ = nullptr;
   std::shared_ptr<const StepGrid> grid_;
+  std::vector<ScheduledEvent> scheduled_events_;
   std::vector<PlannedNode> nodes_;
 };
 

@@ -6,10 +6,11 @@
 // restarts at step K, a replay and the reference get the same instants as the run). A grid
 // that lands on events (landing_on) keeps those instants and adds each event as a boundary
 // of its own: the step before it ends on the event, the next one runs to the following
-// uniform instant. This is the ground for steps landing on announced events (issue 17,
-// docs/accuracy.md "Discontinuities"); what feeds it events is not there yet.
+// uniform instant. The scene plan lands its grid on what the participants schedule before
+// the run (ScenePlan::grid, docs/accuracy.md "Discontinuities").
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -24,8 +25,10 @@ class StepGrid {
   // The uniform grid of a scene's time section.
   explicit StepGrid(const config::TimeSpec& time);
   // The uniform grid with every event strictly inside (start, end) a boundary of its own.
-  // An event closer to a uniform instant than `snap` (a fraction of H) is that instant
-  // (no step shorter than snap H is made). Events need not be sorted; duplicates merge.
+  // An event closer to a uniform instant than `snap` (a fraction of H) takes that instant's
+  // place (no step shorter than snap H is made; the instant moves by a few ulps so that it
+  // is the event's own double, the first on the event's far side). Events need not be
+  // sorted; duplicates merge.
   static StepGrid landing_on(const config::TimeSpec& time, std::span<const double> events, double snap = 1e-6);
 
   std::uint64_t steps() const { return steps_; }  // n: instants 0 .. n
@@ -42,12 +45,19 @@ class StepGrid {
   double step_length(std::uint64_t k) const { return instants_.empty() ? h_ : instants_[k + 1] - instants_[k]; }
   // The step whose instant is t (as computed by time(k)); nullopt when t is no instant.
   std::optional<std::uint64_t> step_at(double t) const;
+  // True when t_k is one of the events the grid landed on (inserted, or a uniform instant
+  // the event fell on): what a node logs at t_k is then its value after the event.
+  bool is_event(std::uint64_t k) const {
+    return !event_steps_.empty() && std::binary_search(event_steps_.begin(), event_steps_.end(), k);
+  }
+  std::size_t event_count() const { return event_steps_.size(); }
 
  private:
   StepGrid(double t0, double h, std::uint64_t steps) : t0_(t0), h_(h), steps_(steps) {}
   double t0_, h_;
   std::uint64_t steps_;
   std::vector<double> instants_;  // empty: uniform
+  std::vector<std::uint64_t> event_steps_;  // ascending
 };
 
 }  // namespace mechsim::cosim

@@ -12,6 +12,7 @@
 // see DDS, YAML or files: parameters arrive as plain structs.
 #pragma once
 
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -96,6 +97,28 @@ class Block {
   // t0 + j * sample_time() before the continuous part is integrated onwards.
   virtual double sample_time() const { return 0.0; }
   virtual void discrete_update(double /*t*/, std::span<double> /*x*/, std::span<const double> /*u*/) {}
+
+  // --- discontinuities known before the run -------------------------------------------
+  // Instants in (t0, t_end) at which the block's own schedule makes its outputs or its
+  // right-hand side jump or kink (a setpoint step or ramp corner, a ratio-schedule point),
+  // whatever its inputs do. The run's step grid lands a macro-step boundary on each
+  // (libs/cosim/step_grid.h), so that no exchange interval straddles one and the sample at
+  // the instant is the value after it (the schedules are right-continuous). Default: none.
+  virtual std::vector<double> scheduled_events(double /*t0*/, double /*t_end*/) const { return {}; }
+  // The same in cam angle: angles [rad, in [0, 2 pi)] of the block's input `angle` at which
+  // its law jumps (a functional load's ends). Where that input comes from a shaft turning
+  // uniformly (uniform_rotation() of the publisher), the plan turns them into times, and
+  // moves each time to the first double at which angle_event_reached() holds, so that the
+  // block evaluates the sample at the event on its far side.
+  virtual std::vector<double> angle_events() const { return {}; }
+  virtual bool angle_event_reached(double theta, double event) const { return theta >= event; }
+  // A shaft whose output `angle` is angle(t), computed exactly so, whatever its inputs.
+  struct UniformRotation {
+    double angle0 = 0.0;  // rad at t = 0
+    double speed = 0.0;   // rad/s
+    double angle(double t) const { return angle0 + speed * t; }
+  };
+  virtual std::optional<UniformRotation> uniform_rotation() const { return std::nullopt; }
 
   // --- checkpoints: the mode / discrete state that is not integrated ------------------
   virtual std::vector<double> save_discrete_state() const { return {}; }

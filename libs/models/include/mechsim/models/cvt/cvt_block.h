@@ -82,6 +82,8 @@ class CvtBlock final : public Block {
   explicit CvtBlock(CvtBlockParams params = {});
 
   void initial_state(double t0, std::span<double> x) const override;
+  // The ratio schedule's points (a jump where two share a time, a kink elsewhere).
+  std::vector<double> scheduled_events(double t0, double t_end) const override;
   void derivatives(double t, std::span<const double> x, std::span<const double> u,
                    std::span<double> dxdt) const override;
   void calc_outputs(double t, std::span<const double> x, std::span<const double> u,

@@ -82,6 +82,9 @@ class FlexibleFollowerBlock : public Block {
   bool handle_events(double t, std::span<double> x, std::span<const double> u,
                      std::span<const int> crossed) override;
   std::vector<BlockEvent> take_event_log() override;
+  // The load intervals' ends, on the side functional_load() takes as after them.
+  std::vector<double> angle_events() const override { return load_boundaries(params_.follower.loads); }
+  bool angle_event_reached(double theta, double event) const override { return angle_at_or_past(theta, event); }
 
   std::vector<double> save_discrete_state() const override;
   void restore_discrete_state(std::span<const double> saved) override;

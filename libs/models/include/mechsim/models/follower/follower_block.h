@@ -23,6 +23,9 @@ class FollowerBlock : public Block {
 
   void calc_outputs(double t, std::span<const double> x, std::span<const double> u,
                     std::span<double> y) const override;
+  // The load intervals' ends, on the side functional_load() takes as after them.
+  std::vector<double> angle_events() const override { return load_boundaries(params_.loads); }
+  bool angle_event_reached(double theta, double event) const override { return angle_at_or_past(theta, event); }
 
   const FollowerParams& params() const { return params_; }
 

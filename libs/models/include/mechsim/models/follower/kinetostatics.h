@@ -43,6 +43,14 @@ void validate(const FollowerParams& params);
 
 // Sum of the functional loads at the cam angle θ (wrapped into [0, 2π)).
 double functional_load(const std::vector<FunctionalLoad>& loads, double theta_rad);
+// θ wrapped into [0, 2π), exactly as functional_load() wraps it.
+double angle_in_revolution(double theta_rad);
+// The ends of the load intervals [rad, in [0, 2π)], each once, ascending: where the load
+// jumps (Block::angle_events of the followers).
+std::vector<double> load_boundaries(const std::vector<FunctionalLoad>& loads);
+// True when θ, wrapped, lies at `boundary` or less than half a revolution past it: the side
+// functional_load() treats as after the boundary (its intervals are half-open, [from, to)).
+bool angle_at_or_past(double theta_rad, double boundary_rad);
 
 struct FollowerForces {
   double functional_load_n;  // F_func

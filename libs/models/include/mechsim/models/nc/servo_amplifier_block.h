@@ -86,6 +86,8 @@ class ServoAmplifierBlock final : public Block {
   void calc_outputs(double t, std::span<const double> x, std::span<const double> u,
                     std::span<double> y) const override;
   double sample_time() const override { return params_.sample_time; }
+  // The internal setpoint's corners (none with an external setpoint).
+  std::vector<double> scheduled_events(double t0, double t_end) const override;
   void discrete_update(double t, std::span<double> x, std::span<const double> u) override;
   std::vector<double> save_discrete_state() const override;
   void restore_discrete_state(std::span<const double> saved) override;

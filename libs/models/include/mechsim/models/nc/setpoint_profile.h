@@ -3,6 +3,8 @@
 // the distance is too short to reach the velocity). Slide position in metres, signed.
 #pragma once
 
+#include <vector>
+
 namespace mechsim::models::nc {
 
 enum class SetpointKind { step, ramp, trapezoid };
@@ -19,6 +21,9 @@ struct SetpointProfile {
   double position(double t) const;  // [m]
   double velocity_at(double t) const;  // d position/dt [m/s]; 0 for a step (the jump is not a velocity)
   double move_duration() const;     // from start_time to rest at the target [s]
+  // Where position or velocity is not smooth: the start (a jump for a step), the end of the
+  // ramp, the trapezoid's ends of acceleration and deceleration [s], in time order.
+  std::vector<double> corners() const;
 };
 
 }  // namespace mechsim::models::nc
