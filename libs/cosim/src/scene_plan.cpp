@@ -99,12 +99,12 @@ namespace {
 // `event` (rad in [0, 2 pi)), each moved to the first double at which `reached` says the
 // block sees the angle on the event's far side (a few ulps at most).
 std::vector<double> times_of_angle(const models::Block::UniformRotation& rotation, double event, double t0, double t_end,
-                                   const std::function<bool(double theta)>& reached) {
+                                   const std::function<bool(double theta)>& reached, std::size_t at_most) {
   std::vector<double> times;
   if (!(rotation.speed > 0)) return times;  // a shaft at rest or turning back: not planned
   const double two_pi = 2.0 * std::numbers::pi;
   const double first_turn = std::floor((rotation.angle(t0) - event) / two_pi);
-  for (double n = first_turn;; n += 1.0) {
+  for (double n = first_turn; times.size() <= at_most; n += 1.0) {
     double t = (event + n * two_pi - rotation.angle0) / rotation.speed;
     if (t >= t_end) break;
     const double up = std::numeric_limits<double>::infinity();
@@ -117,10 +117,21 @@ std::vector<double> times_of_angle(const models::Block::UniformRotation& rotatio
 
 }  // namespace
 
+// Each event costs a step of its own; far more than any mechanism schedules means a scene
+// written wrong (a cam speed in rad/s where rpm was meant, an end time in hours).
+constexpr std::size_t kMaxScheduledEvents = 100'000;
+
 void ScenePlan::land_on_scheduled_events() {
   const config::TimeSpec& time = scene_->time;
+  const auto too_many = [&](const PlannedNode& node) {
+    if (scheduled_events_.size() > kMaxScheduledEvents)
+      refuse(*scene_, node.spec->key_path + ".params",
+             "at most " + std::to_string(kMaxScheduledEvents) + " discontinuities scheduled in the run (each lands a step), "
+             "got more; check the speeds and the time section");
+  };
   for (const auto& node : nodes_) {
     for (double t : node.block->scheduled_events(time.start, time.end)) scheduled_events_.push_back({node.name(), t});
+    too_many(node);
     // Angle events, where the block's `angle` input is a uniformly turning shaft's angle.
     const std::vector<double> angles = node.block->angle_events();
     const int angle_input = node.block->input_index("angle");
@@ -130,10 +141,13 @@ void ScenePlan::land_on_scheduled_events() {
         if (input != angle_input || edge.type->fields[static_cast<std::size_t>(field)].name != "angle") continue;
         const auto rotation = this->node(edge.from).block->uniform_rotation();
         if (!rotation) continue;
-        for (double angle : angles)
+        for (double angle : angles) {
           for (double t : times_of_angle(*rotation, angle, time.start, time.end,
-                                         [&](double theta) { return node.block->angle_event_reached(theta, angle); }))
+                                         [&](double theta) { return node.block->angle_event_reached(theta, angle); },
+                                         kMaxScheduledEvents))
             scheduled_events_.push_back({node.name(), t});
+          too_many(node);
+        }
       }
   }
   std::sort(scheduled_events_.begin(), scheduled_events_.end(),

@@ -128,6 +128,20 @@ TEST(ScheduledEvents, LoadBoundariesAtCamAnglesBecomeTimesOnTheFarSide) {
   EXPECT_TRUE(events_of(ScenePlan::build(press_line), "follower").empty());
 }
 
+// Each event lands a step: a cam at 3 million rpm over the press cam's two seconds would
+// schedule 500 000 load boundaries. Refused, naming the participant, before anything runs.
+TEST(ScheduledEvents, FarTooManyAreRefusedNamingTheParticipant) {
+  const config::Scene scene = config::load_scene(testing::shipped_scene("cam_press.yaml"),
+                                                 {"participants.cam.params.speed=3000000 rpm"});
+  try {
+    ScenePlan::build(scene);
+    FAIL() << "accepted";
+  } catch (const config::ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("participants.follower.params"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("at most 100000 discontinuities"), std::string::npos) << e.what();
+  }
+}
+
 // Through the product's node loop: the amplifier's logged position reference is 0 up to
 // the step before the setpoint step and the full distance at the step's own instant (the
 // schedule is right-continuous), where the run's instants include it.

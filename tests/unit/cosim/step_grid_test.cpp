@@ -59,5 +59,22 @@ TEST(StepGrid, EventsOnOrNearlyOnAUniformInstantAddNoStep) {
   EXPECT_TRUE(StepGrid::landing_on({0.0, 1.0, 0.1}, std::vector<double>{}).uniform());
 }
 
+// A landed grid keeps the uniform one and its few changes, never a double per step: a
+// scene of 10^12 steps with two events builds at once (one double per step would be 8 TB).
+TEST(StepGrid, AHugeGridWithEventsIsKeptAsItsChanges) {
+  const StepGrid grid = StepGrid::landing_on({0.0, 1e6, 1e-6}, std::vector<double>{0.25e-6 + 3.0, 5e5});
+  EXPECT_EQ(grid.steps(), 1'000'000'000'001u);  // 10^12 uniform steps, one event off the grid
+  const std::uint64_t inserted = 3'000'001u;    // after the instants 0 .. 3 s
+  EXPECT_EQ(grid.time(inserted), 0.25e-6 + 3.0);
+  EXPECT_EQ(grid.time(inserted + 1), 3'000'001 * 1e-6);  // the uniform instants go on, shifted by one
+  EXPECT_EQ(grid.step_at(0.25e-6 + 3.0), inserted);
+  EXPECT_TRUE(grid.is_event(inserted));
+  const auto half = grid.step_at(5e5);  // on a uniform instant: marked, no step added
+  ASSERT_TRUE(half.has_value());
+  EXPECT_EQ(*half, 500'000'000'001u);
+  EXPECT_TRUE(grid.is_event(*half));
+  EXPECT_EQ(grid.end(), 1e12 * 1e-6);
+}
+
 }  // namespace
 }  // namespace mechsim::cosim

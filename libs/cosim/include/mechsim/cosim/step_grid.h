@@ -35,14 +35,13 @@ class StepGrid {
   double start() const { return t0_; }
   double end() const { return time(steps_); }
   double nominal_step() const { return h_; }
-  bool uniform() const { return instants_.empty(); }
+  bool uniform() const { return inserted_.empty() && moved_.empty(); }
 
-  // t_k, for k in 0 .. steps().
-  double time(std::uint64_t k) const {
-    return instants_.empty() ? t0_ + static_cast<double>(k) * h_ : instants_[k];
-  }
+  // t_k, for k in 0 .. steps(). A landed grid is kept as the uniform one plus its few
+  // changes (never one double per step: a scene may have billions of steps).
+  double time(std::uint64_t k) const { return uniform() ? uniform_time(k) : landed_time(k); }
   // t_k+1 - t_k; on a uniform grid H itself (not the difference, which may round).
-  double step_length(std::uint64_t k) const { return instants_.empty() ? h_ : instants_[k + 1] - instants_[k]; }
+  double step_length(std::uint64_t k) const { return uniform() ? h_ : time(k + 1) - time(k); }
   // The step whose instant is t (as computed by time(k)); nullopt when t is no instant.
   std::optional<std::uint64_t> step_at(double t) const;
   // True when t_k is one of the events the grid landed on (inserted, or a uniform instant
@@ -53,10 +52,14 @@ class StepGrid {
   std::size_t event_count() const { return event_steps_.size(); }
 
  private:
-  StepGrid(double t0, double h, std::uint64_t steps) : t0_(t0), h_(h), steps_(steps) {}
+  double uniform_time(std::uint64_t j) const { return t0_ + static_cast<double>(j) * h_; }
+  double landed_time(std::uint64_t k) const;
   double t0_, h_;
-  std::uint64_t steps_;
-  std::vector<double> instants_;  // empty: uniform
+  std::uint64_t uniform_steps_;  // of the scene's uniform grid
+  std::uint64_t steps_;          // uniform_steps_ + inserted events
+  std::vector<double> inserted_;          // events between uniform instants, ascending
+  std::vector<std::uint64_t> inserted_at_;  // their step indices
+  std::vector<std::pair<std::uint64_t, double>> moved_;  // (uniform index, event time in its place), ascending
   std::vector<std::uint64_t> event_steps_;  // ascending
 };
 
