@@ -91,10 +91,6 @@ void plan_interface_jacobian_cut(const config::Scene& scene, const config::Conne
   }
 }
 
-}  // namespace
-
-namespace {
-
 // The times in (t0, t_end) at which a shaft turning as `rotation` brings the angle to
 // `event` (rad in [0, 2 pi)), each moved to the first double at which `reached` says the
 // block sees the angle on the event's far side (a few ulps at most).
@@ -177,15 +173,18 @@ ScenePlan ScenePlan::build(const config::Scene& scene) {
         if (coupling) refuse(scene, c.key_path + ".coupling", "expected at most one coupling element per participant");
         coupling = &*c.coupling;
       }
+    // A model's own check of its parameters (libs/models validate(), or parameters outside
+    // what the model describes) is the scene's error, named by the participant's params
+    // (found by tests/fuzz/scene_fuzz: overlapping follower loads ended the process instead).
+    const auto refuse_params = [&](const std::exception& e) {
+      refuse(scene, spec.key_path + ".params", std::string("parameters a ") + spec.type + " accepts (" + e.what() + ")");
+    };
     try {
       node.block = node.type->make_block(spec.params, coupling);
     } catch (const std::invalid_argument& e) {
-      // A model's own check of its parameters (libs/models validate()): the scene's error,
-      // named by the participant's params (found by tests/fuzz/scene_fuzz: overlapping
-      // follower loads ended the process instead).
-      refuse(scene, spec.key_path + ".params", std::string("parameters a ") + spec.type + " accepts (" + e.what() + ")");
-    } catch (const std::domain_error& e) {  // parameters outside what the model describes
-      refuse(scene, spec.key_path + ".params", std::string("parameters a ") + spec.type + " accepts (" + e.what() + ")");
+      refuse_params(e);
+    } catch (const std::domain_error& e) {
+      refuse_params(e);
     }
     node.topic = spec.name + "/" + node.type->topic_suffix;
     for (const auto& field : node.type->publishes->fields) {
