@@ -215,7 +215,9 @@ void Run::print_progress(double since_start, bool final_line) {
   if (!tty_ || !opt_.progress) return;
   std::uint64_t step = UINT64_MAX;
   for (const auto& [name, w] : watch_) step = std::min<std::uint64_t>(step, w.seen ? w.last.header.step : 0);
-  const double t = plan_.grid()->time(std::min(step, plan_.grid()->steps()));
+  double t = scene_.time.end;  // an adaptive run's grid grows in the nodes, not here: their heartbeats' t
+  for (const auto& [name, w] : watch_) t = std::min(t, w.seen ? w.last.header.t : scene_.time.start);
+  if (!plan_.grid()->is_adaptive()) t = plan_.grid()->time(std::min(step, plan_.grid()->steps()));
   const double rate = since_start > 0 ? static_cast<double>(step) / since_start : 0.0;
   const double rtf = since_start > 0 ? (t - scene_.time.start) / since_start : 0.0;
   std::string realtime;
@@ -231,8 +233,9 @@ void Run::print_progress(double since_start, bool final_line) {
     std::snprintf(buf, sizeof buf, "  missed %lld  late p99 %.3f ms  max %.2f ms", missed, p99 * 1e3, late * 1e3);
     realtime = buf;
   }
-  std::fprintf(stderr, "\r[%s] t = %.4f / %.4f s  step %llu / %ld  %.0f steps/s  rtf %.2f%s   %s", scene_.name.c_str(), t,
-               scene_.time.end, static_cast<unsigned long long>(step), static_cast<long>(plan_.grid()->steps()), rate, rtf, realtime.c_str(),
+  const std::string of_steps = plan_.grid()->is_adaptive() ? "" : " / " + std::to_string(plan_.grid()->steps());
+  std::fprintf(stderr, "\r[%s] t = %.4f / %.4f s  step %llu%s  %.0f steps/s  rtf %.2f%s   %s", scene_.name.c_str(), t,
+               scene_.time.end, static_cast<unsigned long long>(step), of_steps.c_str(), rate, rtf, realtime.c_str(),
                final_line ? "\n" : "");
   std::fflush(stderr);
 }
@@ -626,14 +629,26 @@ json Run::summarise(const RunOutcome& out) {
   s["status"] = out.ok ? "ok" : "failed";
   s["macro_step_s"] = scene_.time.step;
   s["simulated_time_s"] = scene_.time.end - scene_.time.start;
-  s["steps"] = plan_.grid()->steps();
+  // An adaptive run's steps are those its nodes logged (the launcher's own grid never grows).
+  std::uint64_t steps = plan_.grid()->steps();
+  if (plan_.grid()->is_adaptive()) {
+    std::vector<double> instants;
+    try {
+      instants = cosim::run_instants(plan_, run_dir_);
+    } catch (const std::exception&) {
+      // a node that died before its log had a header: no instants
+    }
+    steps = instants.empty() ? 0 : instants.size() - 1;
+    s["adaptive_step"] = adaptive_step_summary(*scene_.time.adaptive, instants);
+  }
+  s["steps"] = steps;
   if (!plan_.scheduled_events().empty()) {  // where the grid lands a boundary (docs/accuracy.md)
     nlohmann::json events = nlohmann::json::array();
     for (const auto& e : plan_.scheduled_events()) events.push_back({{"participant", e.participant}, {"t_s", e.t}});
     s["scheduled_events"] = events;
   }
   s["wall_time_s"] = out.wall_time_s;
-  s["steps_per_second"] = out.wall_time_s > 0 ? static_cast<double>(plan_.grid()->steps()) / out.wall_time_s : 0.0;
+  s["steps_per_second"] = out.wall_time_s > 0 ? static_cast<double>(steps) / out.wall_time_s : 0.0;
   s["real_time_factor"] = out.wall_time_s > 0 ? (scene_.time.end - scene_.time.start) / out.wall_time_s : 0.0;
   if (!out.ok)
     s["failure"] = {{"node", out.failed_node}, {"last_step", out.failed_step}, {"reason", out.reason}};
@@ -820,9 +835,10 @@ int Run::execute() {
   }
 
   if (out.ok) {
-    // Compare with the monolithic reference on the macro-step grid.
+    // Compare with the monolithic reference on the macro-step grid (an adaptive run's: the
+    // instants its nodes logged).
     cosim::ScenePlan reference_plan = cosim::ScenePlan::build(scene_);
-    cosim::ReferenceRun ref = cosim::run_reference(reference_plan);
+    cosim::ReferenceRun ref = cosim::run_reference_at(reference_plan, cosim::run_instants(plan_, run_dir_));
     const cosim::ReferenceAccuracy ref_accuracy = cosim::estimate_reference_error(scene_, ref);
     std::map<std::string, cosim::OutputLog> logs;
     for (const auto& node : plan_.nodes())
@@ -911,9 +927,15 @@ int Run::execute() {
 
   // Human summary.
   if (out.ok) {
-    std::printf("run %s of '%s': %ld steps of %g s in %.3f s wall: %.0f steps/s, real-time factor %.2f\n",
-                hex_id(run_id_).c_str(), scene_.name.c_str(), static_cast<long>(plan_.grid()->steps()), scene_.time.step, out.wall_time_s,
-                summary["steps_per_second"].get<double>(), summary["real_time_factor"].get<double>());
+    char of_length[160];
+    if (const json* a = summary.contains("adaptive_step") ? &summary["adaptive_step"] : nullptr; a && (*a)["shortest_s"].is_number())
+      std::snprintf(of_length, sizeof of_length, "adaptive steps of %g .. %g s (tolerance %g)", (*a)["shortest_s"].get<double>(),
+                    (*a)["longest_s"].get<double>(), (*a)["tolerance"].get<double>());
+    else
+      std::snprintf(of_length, sizeof of_length, "steps of %g s", scene_.time.step);
+    std::printf("run %s of '%s': %llu %s in %.3f s wall: %.0f steps/s, real-time factor %.2f\n",
+                hex_id(run_id_).c_str(), scene_.name.c_str(), static_cast<unsigned long long>(summary["steps"].get<std::uint64_t>()),
+                of_length, out.wall_time_s, summary["steps_per_second"].get<double>(), summary["real_time_factor"].get<double>());
     for (auto& [name, e] : summary["signals"].items()) {
       const std::string unit = e["unit"].get<std::string>();
       char at[48] = "";

@@ -1,5 +1,6 @@
 #include "replay_input.h"
 
+#include <algorithm>
 #include <map>
 #include <set>
 #include <stdexcept>
@@ -31,6 +32,7 @@ void write_replay_table(const std::string& recording, const cosim::PlannedNode& 
                              "' publishes); `mechsim bag info " + recording + "` lists what it holds");
 
   std::map<std::uint64_t, std::vector<double>> rows;  // step -> field values
+  std::map<std::uint64_t, double> times;              // step -> the sample's t
   std::set<std::uint64_t> runs;
   reader.for_each_message([&](const record::MessageView& m) {
     if (!channels.count(m.channel_id)) return;
@@ -39,11 +41,20 @@ void write_replay_table(const std::string& recording, const cosim::PlannedNode& 
     std::vector<double> values;
     for (const auto& v : s.values) values.push_back(recorder::as_number(v));
     rows.emplace(s.header.step, std::move(values));
+    times.emplace(s.header.step, s.header.t);
   });
   if (runs.size() > 1)
     throw std::runtime_error(recording + ": topic '" + node.topic + "' holds samples of " + std::to_string(runs.size()) +
                              " runs; replay needs a recording of one run");
-  const std::uint64_t steps = grid.steps();
+  // An adaptive run's steps are the recording's: up to the sample at the scene's end.
+  std::uint64_t steps = grid.steps();
+  if (grid.is_adaptive()) {
+    const auto end = std::find_if(times.begin(), times.end(), [&](const auto& st) { return st.second >= grid.end(); });
+    if (end == times.end())
+      throw std::runtime_error(recording + ": topic '" + node.topic + "' has no sample at the scene's end (t = " +
+                               std::to_string(grid.end()) + " s)" + (reader.truncated() ? "; the file is truncated: `mechsim record --recover` it" : ""));
+    steps = end->first;
+  }
   for (std::uint64_t k = 0; k <= steps; ++k)
     if (!rows.count(k))
       throw std::runtime_error(recording + ": topic '" + node.topic + "' has no sample for step " + std::to_string(k) +
@@ -53,7 +64,7 @@ void write_replay_table(const std::string& recording, const cosim::PlannedNode& 
   std::vector<std::string> columns;  // the writer puts "t" first itself
   for (const auto& f : type.fields) columns.push_back(f.name);
   cosim::OutputLogWriter table(table_path, columns);
-  for (std::uint64_t k = 0; k <= steps; ++k) table.append(grid.time(k), rows[k]);
+  for (std::uint64_t k = 0; k <= steps; ++k) table.append(grid.is_adaptive() ? times[k] : grid.time(k), rows[k]);
   table.close();
 }
 

@@ -203,4 +203,18 @@ void print_figures(const json& figures) {
   }
 }
 
+nlohmann::json adaptive_step_summary(const config::AdaptiveStepSpec& spec, std::span<const double> instants) {
+  nlohmann::json a = {{"tolerance", spec.tolerance}, {"min_s", spec.min}, {"max_s", spec.max}, {"initial_s", spec.initial},
+                      {"steps", instants.empty() ? 0 : instants.size() - 1}, {"shortest_s", nullptr}, {"longest_s", nullptr},
+                      {"median_s", nullptr}};
+  if (instants.size() < 2) return a;
+  std::vector<double> h(instants.size() - 1);
+  for (std::size_t k = 0; k + 1 < instants.size(); ++k) h[k] = instants[k + 1] - instants[k];
+  std::sort(h.begin(), h.end());
+  a["shortest_s"] = h.front();
+  a["longest_s"] = h.back();
+  a["median_s"] = h[h.size() / 2];
+  return a;
+}
+
 }  // namespace mechsim::launch

@@ -32,6 +32,10 @@ nlohmann::json report_figures(const config::Scene& scene, std::span<const double
                               const SeriesLookup* reference = nullptr);
 nlohmann::json solver_stats_json(const solve::SolverStats& s);
 
+// The steps an adaptive run took (time.step: adaptive): {tolerance, min_s, max_s, steps,
+// shortest_s, longest_s, median_s, events}; shortest/longest null without instants.
+nlohmann::json adaptive_step_summary(const config::AdaptiveStepSpec& spec, std::span<const double> instants);
+
 // Prints the figures, one line each.
 void print_figures(const nlohmann::json& figures);
 

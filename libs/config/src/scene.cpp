@@ -75,14 +75,40 @@ SignalRef parse_signal_ref(const ConfigNode& node, const std::string& text) {
   return {text.substr(0, dot), text.substr(dot + 1), node.path()};
 }
 
+// `step: adaptive` with tolerance, min, max, initial (defaults: max = a hundredth of the run,
+// min = max / 1000, initial = min, tolerance 1e-3).
+AdaptiveStepSpec parse_adaptive_step(const ConfigNode& t, double duration) {
+  AdaptiveStepSpec a;
+  if (t.has("tolerance")) {
+    a.tolerance = t.number("tolerance");
+    if (!(a.tolerance > 0 && a.tolerance < 1)) t.child("tolerance").fail("expected a tolerance in (0, 1), e.g. 1e-4");
+  }
+  a.max = t.has("max") ? t.positive_quantity("max", dim::time) : duration / 100;
+  a.min = t.has("min") ? t.positive_quantity("min", dim::time) : a.max / 1000;
+  if (!(a.min <= a.max)) t.child("min").fail("expected min <= max (" + std::to_string(a.max) + " s)");
+  if (a.max > duration) t.child("max").fail("expected max <= end - start (" + std::to_string(duration) + " s)");
+  // Each node keeps the instants of the run's steps (a double each): bounded here.
+  if (duration / a.min > 1e8) t.child("min").fail("expected at most 1e8 steps of the smallest length (end - start) / min");
+  a.initial = t.has("initial") ? t.positive_quantity("initial", dim::time) : a.min;
+  if (!(a.initial >= a.min && a.initial <= a.max)) t.child("initial").fail("expected a first step between min and max");
+  return a;
+}
+
 TimeSpec parse_time(const ConfigNode& t) {
-  t.allow_only({"start", "end", "step"});
   TimeSpec spec;
+  const bool adaptive = t.has("step") && t.child("step").is_scalar() && t.child("step").as_string() == "adaptive";
+  if (adaptive) t.allow_only({"start", "end", "step", "tolerance", "min", "max", "initial"});
+  else t.allow_only({"start", "end", "step"});
   spec.start = t.has("start") ? t.quantity("start", dim::time) : 0.0;
   spec.end = t.quantity("end", dim::time);
-  spec.step = t.positive_quantity("step", dim::time);
   if (!(spec.end > spec.start))
     t.child("end").fail("expected an end time after the start time (" + std::to_string(spec.start) + " s)");
+  if (adaptive) {
+    spec.adaptive = parse_adaptive_step(t, spec.end - spec.start);
+    spec.step = spec.adaptive->max;
+    return spec;
+  }
+  spec.step = t.positive_quantity("step", dim::time);
   double n = (spec.end - spec.start) / spec.step;
   if (std::abs(n - std::round(n)) > 1e-9 * std::max(1.0, n))
     t.child("end").fail("expected end - start to be a whole number of steps (got " + std::to_string(n) + " steps)");
@@ -173,6 +199,9 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   if (root.has("description")) scene.description = root.string("description");
   scene.time = parse_time(root.child("time"));
   if (root.has("mode")) scene.mode = root.choice("mode", {"lockstep", "realtime"});
+  // Real-time pacing publishes on a fixed period (an NC loop's sample time).
+  if (scene.mode == "realtime" && scene.time.adaptive)
+    root.child("mode").fail("lockstep with time.step: adaptive (a real-time run keeps a fixed period: docs/accuracy.md)");
   if (root.has("rtf")) {
     scene.rtf = root.number("rtf");
     if (!(scene.rtf > 0)) root.child("rtf").fail("expected a real-time factor > 0");
@@ -274,6 +303,10 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
     if (spec.restart && scene.mode == "realtime")
       (p.has("restart") ? p.child("restart") : root.child("faults").child("restart"))
           .fail("restart: on_failure is built for mode: lockstep only, not for a real-time run (docs/faults.md)");
+    // A checkpoint holds a node's state at a step, not the agreed instants before it.
+    if (spec.restart && scene.time.adaptive)
+      (p.has("restart") ? p.child("restart") : root.child("faults").child("restart"))
+          .fail("restart: on_failure is built for a fixed macro step, not for time.step: adaptive (docs/accuracy.md)");
     spec.process_realtime = scene_process_realtime;
     if (auto rt = p.optional_child("realtime")) {
       rt->allow_only({"priority", "lock_memory", "cpus"});

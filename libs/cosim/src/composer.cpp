@@ -1,5 +1,7 @@
 #include "mechsim/cosim/composer.h"
 
+#include "mechsim/cosim/output_log.h"
+
 #include <chrono>
 #include <cmath>
 #include <functional>
@@ -195,7 +197,28 @@ void CompositeBlock::restore_discrete_state(std::span<const double> saved) {
 }
 
 ReferenceRun run_reference(ScenePlan& plan, double rtol, double atol) {
+  const StepGrid& grid = *plan.grid();  // sampled where the nodes publish
+  if (grid.is_adaptive())
+    throw std::invalid_argument("the reference of a scene with an adaptive step is sampled at the instants its run took");
+  std::vector<double> instants(grid.steps() + 1);
+  for (std::uint64_t k = 0; k < instants.size(); ++k) instants[k] = grid.time(k);
+  return run_reference_at(plan, instants, rtol, atol);
+}
+
+std::vector<double> run_instants(const ScenePlan& plan, const std::string& run_dir) {
+  const StepGrid& grid = *plan.grid();
+  if (!grid.is_adaptive()) {
+    std::vector<double> instants(grid.steps() + 1);
+    for (std::uint64_t k = 0; k < instants.size(); ++k) instants[k] = grid.time(k);
+    return instants;
+  }
+  return read_output_log(run_dir + "/" + plan.nodes().front().name() + ".outputs.bin").data.at(0);
+}
+
+ReferenceRun run_reference_at(ScenePlan& plan, std::span<const double> instants, double rtol, double atol) {
   const auto started = std::chrono::steady_clock::now();
+  if (instants.empty() || instants.front() != plan.scene().time.start)
+    throw std::invalid_argument("reference: the instants must start at the scene's start");
   const config::TimeSpec& time = plan.scene().time;
   CompositeBlock composite(plan);
   std::vector<double> x(composite.num_states()), y(composite.num_outputs());
@@ -211,8 +234,7 @@ ReferenceRun run_reference(ScenePlan& plan, double rtol, double atol) {
   run.log.columns.push_back("t");
   for (const auto& o : composite.outputs()) run.log.columns.push_back(o.name);
   run.log.data.resize(run.log.columns.size());
-  const StepGrid& grid = *plan.grid();  // sampled where the nodes publish
-  const auto n = static_cast<long>(grid.steps());
+  const auto n = static_cast<long>(instants.size()) - 1;
   for (auto& column : run.log.data) column.reserve(n + 1);
   auto sample = [&](double t) {
     composite.calc_outputs(t, integrator.state(), {}, y);
@@ -223,7 +245,7 @@ ReferenceRun run_reference(ScenePlan& plan, double rtol, double atol) {
   integrator.advance_to(time.start, no_inputs);  // sampled blocks: the t0 sample before the t0 outputs
   sample(time.start);
   for (long k = 1; k <= n; ++k) {
-    const double t = grid.time(static_cast<std::uint64_t>(k));
+    const double t = instants[static_cast<std::size_t>(k)];
     integrator.advance_to(t, no_inputs);
     for (auto& e : composite.take_event_log()) run.events.push_back(std::move(e));
     sample(t);
@@ -250,7 +272,7 @@ ReferenceAccuracy estimate_reference_error(const config::Scene& scene, const Ref
   ReferenceAccuracy acc;
   acc.rtol = ref.rtol / factor;
   acc.atol = ref.atol / factor;
-  const ReferenceRun tight = run_reference(plan, acc.rtol, acc.atol);
+  const ReferenceRun tight = run_reference_at(plan, ref.log.data.at(0), acc.rtol, acc.atol);  // the same instants
   acc.wall_time_s = tight.wall_time_s;
   acc.stats = tight.stats;
   if (tight.log.columns != ref.log.columns || tight.log.rows() != ref.log.rows())

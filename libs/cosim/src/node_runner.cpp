@@ -17,6 +17,7 @@
 #include "mechsim/cosim/node_stepper.h"
 #include "mechsim/cosim/output_log.h"
 #include "mechsim/cosim/pacer.h"
+#include "mechsim/cosim/step_topic.h"
 
 namespace mechsim::cosim {
 
@@ -197,7 +198,28 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
       }
     }
 
-    NodeStepper stepper(node, plan.grid());
+    // Adaptive macro step: this node's proposals out, every other participant's in
+    // (step_control.h; the proposals of one step agree in every node without the launcher).
+    const bool adaptive = plan.grid()->is_adaptive();
+    std::size_t self = 0;
+    while (plan.nodes()[self].name() != node_name) ++self;
+    std::unique_ptr<transport::SampleWriter> step_writer;
+    struct ProposalReader {
+      std::size_t participant;
+      std::string topic;
+      std::unique_ptr<transport::SampleReader> reader;
+    };
+    std::vector<ProposalReader> step_readers;
+    if (adaptive) {
+      const transport::TopicType& type = step_proposal_type();
+      step_writer = participant.create_writer(step_topic(node_name), type);
+      for (std::size_t i = 0; i < plan.nodes().size(); ++i)
+        if (i != self) {
+          const std::string topic = step_topic(plan.nodes()[i].name());
+          step_readers.push_back({i, topic, participant.create_reader(topic, type)});
+        }
+    }
+    NodeStepper stepper(node, plan.grid(), plan.nodes().size(), self);
     // Restarted after a crash: the checkpoint to resume from (docs/faults.md).
     std::optional<NodeCheckpoint> resumed;
     if (options.resume_step) {
@@ -233,6 +255,9 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
       if (node.recorded && writer->matched_readers_including_tools() < node.subscriber_count + 1) return false;
       for (const auto& r : readers)
         if (r->matched_writers() < 1) return false;
+      if (step_writer && step_writer->matched_readers() < static_cast<int>(step_readers.size())) return false;
+      for (const auto& r : step_readers)
+        if (r.reader->matched_writers() < 1) return false;
       return !node.cut || (cut_writer->matched_readers() >= 1 && cut_reader->matched_writers() >= 1);
     };
     bool ready = false, started = false;
@@ -413,6 +438,16 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
         took = true;
         if (h.run_id == options.run_id) stepper.add_partner_prediction(h.step, received);
       }
+      for (const auto& r : step_readers)
+        while (r.reader->take(h, received)) {
+          took = true;
+          if (h.run_id != options.run_id) continue;
+          const StepProposal p = proposal_from_fields(received);
+          if (!(p.step_length > 0) || !std::isfinite(p.step_length))
+            foreign(r.reader.get(), r.topic, plan.nodes()[r.participant].name(),
+                    "a step proposal of length " + std::to_string(p.step_length) + " s for step " + std::to_string(h.step));
+          stepper.add_proposal(r.participant, h.step, p);
+        }
       if (took) hold_for_second_writer();
     };
     // Every write of the node's own sample and of its cut prediction, each with its
@@ -469,7 +504,15 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
     const bool lose_restored_sample = lose_hook && node_name == lose_hook;
     bool lose_next_prediction = false;
     std::vector<double> prediction;
+    std::vector<double> proposal_fields;
+    auto propose_if_due = [&] {
+      if (!stepper.proposal_due()) return;
+      const StepProposal p = stepper.propose();
+      proposal_to_fields(p, proposal_fields);
+      step_writer->write({options.run_id, stepper.step(), stepper.time()}, proposal_fields);
+    };
     auto predict_if_due = [&] {
+      propose_if_due();
       if (!stepper.prediction_due()) return;
       stepper.predict(prediction);
       const transport::SampleHeader h{options.run_id, stepper.step(), stepper.time()};
@@ -707,6 +750,7 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
     if (pacer && !options.run_dir.empty()) write_realtime_figures(options.run_dir + "/" + node_name + ".realtime.json", *pacer);
     writer->flush(std::chrono::seconds(10));
     if (cut_writer) cut_writer->flush(std::chrono::seconds(10));
+    if (step_writer) step_writer->flush(std::chrono::seconds(10));
     copy_stats(stepper.solver_stats(), beat.status());
     beat.set_state(transport::NodeState::done);
     std::printf("done: %llu steps, t = %.9g s, %.3f s wall\n", static_cast<unsigned long long>(stepper.step()),

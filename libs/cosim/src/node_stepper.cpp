@@ -1,6 +1,7 @@
 #include "mechsim/cosim/node_stepper.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 
@@ -16,8 +17,19 @@ solve::SolverOptions solver_options(const config::SolverSpec& spec) {
   return o;
 }
 
-NodeStepper::NodeStepper(PlannedNode& node, std::shared_ptr<const StepGrid> grid) : node_(node), grid_(std::move(grid)) {
+NodeStepper::NodeStepper(PlannedNode& node, std::shared_ptr<const StepGrid> grid, std::size_t participants, std::size_t self)
+    : node_(node), grid_(std::move(grid)), self_(self) {
   const models::Block& block = *node.block;
+  if (grid_->is_adaptive()) {
+    std::vector<CouplingErrorEstimate::Edge> edges;
+    for (const auto& edge : node.inputs) {
+      CouplingErrorEstimate::Edge e{edge.order, edge.reconstruction, {}};
+      for (const auto& [field, input] : edge.field_to_input) e.fields.push_back(static_cast<std::size_t>(field));
+      edges.push_back(std::move(e));
+    }
+    estimate_.emplace(std::move(edges));
+    agreement_.emplace(participants, grid_->adaptive_spec(), grid_->end());
+  }
   for (const auto& edge : node.inputs) {
     InputChannel channel(edge.order, edge.reconstruction, grid_);
     // A Jacobi edge's initial values are the defaults of the inputs it feeds.
@@ -54,12 +66,69 @@ bool NodeStepper::inputs_ready(std::uint64_t k) const {
 }
 
 bool NodeStepper::can_step() const {
-  if (!initialised_ || finished() || !inputs_ready(k_)) return false;
+  if (!initialised_ || finished() || !step_known() || !inputs_ready(k_)) return false;
   return !cut_side_ || (has_own_prediction_ && partner_predictions_.count(k_) > 0);
 }
 
 bool NodeStepper::prediction_due() const {
-  return cut_side_ && initialised_ && !finished() && !has_own_prediction_ && inputs_ready(k_);
+  return cut_side_ && initialised_ && !finished() && !has_own_prediction_ && step_known() && inputs_ready(k_);
+}
+
+bool NodeStepper::proposal_due() const {
+  if (!agreement_ || !initialised_ || finished() || proposed_step_ == k_) return false;
+  // The estimate compares what a Jacobi edge reconstructed at t_k with the partner's step-k
+  // sample; a Gauss-Seidel edge's step-k sample is here already (the step to t_k needed it).
+  for (std::size_t e = 0; e < channels_.size(); ++e)
+    if (channels_[e].order() == config::EdgeOrder::jacobi && !channels_[e].ready_for_step(k_)) return false;
+  return true;
+}
+
+StepProposal NodeStepper::propose() {
+  if (!proposal_due()) throw std::logic_error("step proposal before the step's Jacobi inputs arrived");
+  const config::AdaptiveStepSpec& spec = grid_->adaptive_spec();
+  for (std::size_t e = 0; e < channels_.size(); ++e)
+    if (channels_[e].order() == config::EdgeOrder::jacobi)
+      estimate_->received(e, k_, channels_[e].held_samples().at(k_));
+  const double t = time();
+  StepProposal p;
+  if (channels_.empty()) {
+    p = propose_step(spec, 0.0, std::nullopt);  // no inputs: no coupling error of its own
+    p.step_length = spec.max;
+  } else {
+    // After a discontinuity (or a law joint) the controller starts again from its initial
+    // step, like an integrator after an event: the step before says nothing of what follows.
+    const bool restart = k_ == 0 || grid_->is_event(k_);
+    p = propose_step(spec, restart ? 0.0 : grid_->step_length(k_ - 1), estimate_->ratio_at(k_, spec.tolerance));
+  }
+  // The participants' scheduled discontinuities: every node knows them (the plan), every
+  // node's proposal lands on the next one.
+  const double event = grid_->next_scheduled_event(t);
+  p.event_time = event;
+  p.event = std::isfinite(event);
+  // A replayed participant steps where the recorded run stepped (it has no opinion of its own).
+  if (const double recorded = node_.block->next_instant_after(t); std::isfinite(recorded)) {
+    p.step_length = spec.max;
+    p.event_time = recorded;
+    p.event = recorded == event;
+  }
+  proposed_step_ = k_;
+  add_proposal(self_, k_, p);
+  return p;
+}
+
+void NodeStepper::add_proposal(std::size_t participant, std::uint64_t step, const StepProposal& proposal) {
+  if (!agreement_) throw std::logic_error("step proposal in a run with a fixed macro step");
+  if (initialised_ && step < k_) return;  // agreed and taken
+  if (!agreement_->add(participant, step, proposal))
+    throw std::runtime_error("two different step proposals of participant " + std::to_string(participant) + " for step " +
+                             std::to_string(step) + ": a participant that does not belong to this run writes into it");
+  agree_if_complete();
+}
+
+void NodeStepper::agree_if_complete() {
+  if (!initialised_ || !agreement_->complete(k_)) return;
+  const AgreedStep a = agreement_->agreed(k_, time());
+  grid_->extend(k_, a.t_next, a.event);
 }
 
 void NodeStepper::predict(std::vector<double>& prediction_fields) {
@@ -120,6 +189,7 @@ void NodeStepper::initialise(std::vector<double>& topic_values) {
   publishable(topic_values);
   k_ = 0;
   initialised_ = true;
+  if (agreement_) agree_if_complete();
 }
 
 void NodeStepper::step(std::vector<double>& topic_values) {
@@ -159,6 +229,7 @@ void NodeStepper::step(std::vector<double>& topic_values) {
   for (std::size_t e = 0; e < channels_.size(); ++e) {
     channels_[e].values_at_step_end(k, scratch_);
     for (const auto& [field, input] : node_.inputs[e].field_to_input) u_[input] = scratch_[field];
+    if (estimate_) estimate_->used_at_step_end(e, k + 1, t_next, scratch_);
   }
   // The torque published at t_k+1: the last two levels (means over their sub-intervals)
   // extrapolated to the step's end; the same on both sides.
@@ -167,6 +238,10 @@ void NodeStepper::step(std::vector<double>& topic_values) {
   publishable(topic_values);
   k_ = k + 1;
   for (auto& c : channels_) c.discard_before(k_);
+  if (agreement_) {
+    agreement_->discard_before(k_);
+    agree_if_complete();  // the partners' proposals of the new step may be here already
+  }
 }
 
 std::vector<solve::EventRecord> NodeStepper::take_events() {

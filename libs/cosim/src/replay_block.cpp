@@ -1,5 +1,6 @@
 #include "mechsim/cosim/replay_block.h"
 
+#include <algorithm>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -40,6 +41,12 @@ void ReplayBlock::calc_outputs(double t, std::span<const double>, std::span<cons
   for (std::size_t o = 0; o < field_of_output_.size(); ++o) y[o] = row.at(static_cast<std::size_t>(field_of_output_[o]));
 }
 
+double ReplayBlock::next_instant_after(double t) const {
+  if (!grid_->is_adaptive()) return Block::next_instant_after(t);
+  const auto it = std::upper_bound(recorded_.times.begin(), recorded_.times.end(), t);
+  return it == recorded_.times.end() ? Block::next_instant_after(t) : *it;
+}
+
 RecordedTopic recorded_topic_from_log(const OutputLog& log, const transport::TopicType& type, const std::string& path) {
   RecordedTopic r;
   std::vector<int> columns;
@@ -49,13 +56,17 @@ RecordedTopic recorded_topic_from_log(const OutputLog& log, const transport::Top
     columns.push_back(c);
   }
   r.rows.resize(log.rows());
+  r.times = log.data.empty() ? std::vector<double>{} : log.data[0];
   for (std::size_t k = 0; k < log.rows(); ++k)
     for (int c : columns) r.rows[k].push_back(log.data[static_cast<std::size_t>(c)][k]);
   return r;
 }
 
 void replace_with_replay(PlannedNode& node, RecordedTopic recorded, std::shared_ptr<const StepGrid> grid) {
-  const auto needed = static_cast<std::size_t>(grid->steps()) + 1;
+  if (grid->is_adaptive() && (recorded.times.empty() || recorded.times.back() != grid->end()))
+    throw std::runtime_error("replay of '" + node.name() + "': the recording of this adaptive run does not reach its end (" +
+                             std::to_string(grid->end()) + " s)");
+  const auto needed = grid->is_adaptive() ? recorded.rows.size() : static_cast<std::size_t>(grid->steps()) + 1;
   if (recorded.rows.size() < needed)
     throw std::runtime_error("replay of '" + node.name() + "': the recording holds " +
                              (recorded.rows.empty() ? std::string("no step") : "steps 0.." + std::to_string(recorded.rows.size() - 1)) +

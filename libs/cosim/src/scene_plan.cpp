@@ -128,6 +128,16 @@ void ScenePlan::land_on_scheduled_events() {
   for (const auto& node : nodes_) {
     for (double t : node.block->scheduled_events(time.start, time.end)) scheduled_events_.push_back({node.name(), t});
     too_many(node);
+    // An adaptive step also lands on a uniformly turning shaft's law joints (Block::angle_law_changes).
+    if (const auto rotation = node.block->uniform_rotation(); rotation && time.adaptive) {
+      const double two_pi = 2.0 * std::numbers::pi;
+      for (double angle : node.block->angle_law_changes()) {
+        const auto past = [&](double theta) { return theta - two_pi * std::floor(theta / two_pi) >= angle; };
+        for (double t : times_of_angle(*rotation, angle, time.start, time.end, past, kMaxScheduledEvents))
+          scheduled_events_.push_back({node.name(), t});
+        too_many(node);
+      }
+    }
     // Angle events, where the block's `angle` input is a uniformly turning shaft's angle.
     const std::vector<double> angles = node.block->angle_events();
     const int angle_input = node.block->input_index("angle");
@@ -151,7 +161,8 @@ void ScenePlan::land_on_scheduled_events() {
   std::vector<double> times;
   for (const auto& e : scheduled_events_) times.push_back(e.t);
   // Every node plans the same scene, so every node lands on the same events: no message.
-  grid_ = std::make_shared<const StepGrid>(StepGrid::landing_on(time, times));
+  grid_ = time.adaptive ? std::make_shared<const StepGrid>(StepGrid::adaptive(time, times))
+                        : std::make_shared<const StepGrid>(StepGrid::landing_on(time, times));
 }
 
 ScenePlan ScenePlan::build(const config::Scene& scene) {

@@ -8,8 +8,43 @@
 namespace mechsim::cosim {
 
 StepGrid::StepGrid(const config::TimeSpec& time)
-    : t0_(time.start), h_(time.step), uniform_steps_(static_cast<std::uint64_t>(time.steps())), steps_(uniform_steps_) {
+    : t0_(time.start), h_(time.step),
+      uniform_steps_(time.adaptive ? 0 : static_cast<std::uint64_t>(time.steps())), steps_(uniform_steps_) {
   if (!(h_ > 0)) throw std::invalid_argument("StepGrid: the macro step must be positive");
+}
+
+StepGrid StepGrid::adaptive(const config::TimeSpec& time, std::vector<double> events) {
+  StepGrid grid(time);
+  grid.adaptive_ = true;
+  grid.adaptive_spec_ = *time.adaptive;
+  grid.end_ = time.end;
+  grid.times_.assign(1, time.start);
+  // Events closer together than the smallest step are one (the latest of them: each is the
+  // first double on its own far side, so the latest is past all of them); no sliver steps.
+  std::sort(events.begin(), events.end());
+  for (double e : events) {
+    if (!std::isfinite(e) || e <= time.start || e >= time.end) continue;
+    if (!grid.scheduled_.empty() && e - grid.scheduled_.back() < grid.adaptive_spec_.min) grid.scheduled_.back() = e;
+    else grid.scheduled_.push_back(e);
+  }
+  return grid;
+}
+
+void StepGrid::extend(std::uint64_t k, double t_next, bool event) const {
+  if (!adaptive_) throw std::logic_error("StepGrid::extend on a fixed-step grid");
+  if (k + 1 < times_.size()) {
+    if (times_[k + 1] != t_next) throw std::logic_error("step grid: step " + std::to_string(k) + " agreed twice with different ends");
+    return;
+  }
+  if (k + 1 != times_.size()) throw std::logic_error("step grid: step " + std::to_string(k) + " agreed before the step before it");
+  if (!(t_next > times_.back()) || t_next > end_) throw std::logic_error("step grid: step " + std::to_string(k) + " does not go forward");
+  times_.push_back(t_next);
+  if (event) event_steps_.push_back(k + 1);
+}
+
+double StepGrid::next_scheduled_event(double t) const {
+  const auto it = std::upper_bound(scheduled_.begin(), scheduled_.end(), t);
+  return it == scheduled_.end() ? HUGE_VAL : *it;
 }
 
 StepGrid StepGrid::landing_on(const config::TimeSpec& time, std::span<const double> events, double snap) {
@@ -71,6 +106,11 @@ double StepGrid::landed_time(std::uint64_t k) const {
 
 std::optional<std::uint64_t> StepGrid::step_at(double t) const {
   if (!std::isfinite(t)) return std::nullopt;
+  if (adaptive_) {
+    const auto it = std::lower_bound(times_.begin(), times_.end(), t);
+    if (it == times_.end() || *it != t) return std::nullopt;
+    return static_cast<std::uint64_t>(it - times_.begin());
+  }
   if (const auto it = std::lower_bound(inserted_.begin(), inserted_.end(), t); it != inserted_.end() && *it == t)
     return inserted_at_[static_cast<std::size_t>(it - inserted_.begin())];
   const double j_real = std::round((t - t0_) / h_);

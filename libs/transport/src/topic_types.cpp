@@ -14,6 +14,10 @@ FieldInfo f64(const char* name) { return {name, FieldKind::f64}; }
 // (an amplifier of 1 kV, a motor at 10 000 rad/s), never a design limit of one scene.
 FieldInfo bounded(const char* name, double min, double max, const char* unit) { return {name, FieldKind::f64, min, max, unit}; }
 FieldInfo flag(const char* name) { return {name, FieldKind::boolean}; }
+// A field with a unit but no physical bounds (finite only).
+FieldInfo unbounded(const char* name, const char* unit) {
+  return {name, FieldKind::f64, -std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(), unit};
+}
 
 // Mirrors idl/cam.idl.
 const TopicType kCamState{"mechsim::msg::CamState", "cam.idl",
@@ -51,11 +55,16 @@ TopicType coupling_prediction_type() {
   return t;
 }
 const TopicType kCouplingPrediction = coupling_prediction_type();
+// Mirrors idl/step.idl.
+const TopicType kStepProposal{"mechsim::msg::StepProposal", "step.idl",
+                              {bounded("step_length", 0.0, std::numeric_limits<double>::infinity(), "s"), flag("event"),
+                               unbounded("event_time", "s"),
+                               bounded("error_estimate", 0.0, std::numeric_limits<double>::infinity(), "1")}};
 }  // namespace
 
 const std::vector<const TopicType*>& all_topic_types() {
   static const std::vector<const TopicType*> types{&kCamState, &kFollowerState, &kServoCommand, &kTachoState,
-                                                          &kSlideState, &kCouplingPrediction, &kCvtState};
+                                                          &kSlideState, &kCouplingPrediction, &kCvtState, &kStepProposal};
   return types;
 }
 

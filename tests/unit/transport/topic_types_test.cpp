@@ -54,7 +54,7 @@ TEST(TopicTypes, FieldListsMirrorTheIdl) {
 }
 
 TEST(TopicTypes, EveryIdlStructIsFinal) {
-  for (const char* file : {"header.idl", "control.idl", "status.idl", "cam.idl", "follower.idl", "servo.idl", "tacho.idl", "slide.idl", "coupling.idl", "cvt.idl"}) {
+  for (const char* file : {"header.idl", "control.idl", "status.idl", "cam.idl", "follower.idl", "servo.idl", "tacho.idl", "slide.idl", "coupling.idl", "cvt.idl", "step.idl"}) {
     std::ifstream in(std::string(MECHSIM_SOURCE_DIR) + "/idl/" + file);
     std::stringstream ss;
     ss << in.rdbuf();

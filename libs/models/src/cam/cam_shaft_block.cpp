@@ -144,4 +144,10 @@ std::optional<Block::UniformRotation> CamShaftBlock::uniform_rotation() const {
   return UniformRotation{params_.initial_angle, params_.speed};
 }
 
+std::vector<double> CamShaftBlock::angle_law_changes() const {
+  std::vector<double> joints;
+  for (const auto& piece : params_.law.pieces()) joints.push_back(piece.segment.start_rad);
+  return joints;
+}
+
 }  // namespace mechsim::models::cam

@@ -8,6 +8,7 @@
 #include "follower.h"
 #include "servo.h"
 #include "slide.h"
+#include "step.h"
 #include "tacho.h"
 
 namespace mechsim::transport::cyclone {
@@ -92,6 +93,9 @@ std::vector<CycloneType> make_bindings() {
 #undef MECHSIM_PREDICTED
 #undef MECHSIM_SENSITIVITY
 #undef MECHSIM_LEVELS
+  b.push_back({find_topic_type("StepProposal"), &mechsim_msg_StepProposal_desc, sizeof(mechsim_msg_StepProposal),
+               {MECHSIM_F64(mechsim_msg_StepProposal, step_length), MECHSIM_FLAG(mechsim_msg_StepProposal, event),
+                MECHSIM_F64(mechsim_msg_StepProposal, event_time), MECHSIM_F64(mechsim_msg_StepProposal, error_estimate)}});
   for (const auto& binding : b)
     if (binding.type == nullptr || binding.slots.size() != binding.type->fields.size())
       throw std::logic_error("cyclone binding does not match topic_types.cpp");

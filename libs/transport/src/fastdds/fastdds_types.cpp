@@ -9,6 +9,7 @@
 #include "fastddsgen/followerPubSubTypes.h"
 #include "fastddsgen/servoPubSubTypes.h"
 #include "fastddsgen/slidePubSubTypes.h"
+#include "fastddsgen/stepPubSubTypes.h"
 #include "fastddsgen/tachoPubSubTypes.h"
 
 namespace mechsim::transport::fastdds {
@@ -148,6 +149,10 @@ std::vector<std::unique_ptr<FastType>> make_bindings() {
 #undef MECHSIM_PREDICTED
 #undef MECHSIM_SENSITIVITY
 #undef MECHSIM_LEVELS
+  b.push_back(std::make_unique<Binding<StepProposal, StepProposalPubSubType>>(
+      "StepProposal", std::vector<Slot<StepProposal>>{
+                          MECHSIM_F64(StepProposal, step_length), MECHSIM_FLAG(StepProposal, event),
+                          MECHSIM_F64(StepProposal, event_time), MECHSIM_F64(StepProposal, error_estimate)}));
   return b;
 }
 #undef MECHSIM_F64

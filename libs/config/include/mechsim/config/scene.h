@@ -16,11 +16,21 @@ namespace mechsim::config {
 // else "fastdds" (a build option, libs/config/CMakeLists.txt).
 const char* default_dds_vendor();
 
+// `time: {step: adaptive, tolerance, min, max, initial}`: the macro step follows the coupling
+// error (docs/accuracy.md, "Adaptive macro step"; libs/cosim/step_control.h).
+struct AdaptiveStepSpec {
+  double tolerance = 1e-3;  // per-step coupling error, relative to each input field's scale
+  double min = 0.0;         // s
+  double max = 0.0;         // s
+  double initial = 0.0;     // s, the first step's length
+};
+
 struct TimeSpec {
   double start = 0.0;  // s
   double end = 0.0;    // s
-  double step = 0.0;   // macro (base) step H, s
-  long steps() const;  // number of macro steps, (end - start) / step, exact
+  double step = 0.0;   // macro (base) step H, s; with an adaptive step its largest, `max`
+  long steps() const;  // number of macro steps, (end - start) / step, exact (fixed step only)
+  std::optional<AdaptiveStepSpec> adaptive;
 };
 
 enum class EdgeOrder { jacobi, gauss_seidel };

@@ -4,6 +4,7 @@
 // reconstruction); outputs are evaluated in an order that respects direct feedthrough.
 #pragma once
 
+#include <span>
 #include <string>
 #include <vector>
 
@@ -73,8 +74,15 @@ struct ReferenceRun {
 };
 
 // Integrates the composed scene over its time span at tight tolerance, sampling the outputs
-// at the macro-step grid t_k = t0 + k H.
+// at the macro-step grid t_k = t0 + k H. A scene with an adaptive step has no grid before its
+// run: std::invalid_argument (use the overload with the run's instants).
 ReferenceRun run_reference(ScenePlan& plan, double rtol = 1e-10, double atol = 1e-12);
+// The same, sampled at the given instants (ascending, the first the scene's start): those a
+// run with an adaptive step took (the t column of a node's output log).
+ReferenceRun run_reference_at(ScenePlan& plan, std::span<const double> instants, double rtol = 1e-10, double atol = 1e-12);
+// The instants the reference of a run samples: the grid's, or for an adaptive step those of
+// the node logs in `run_dir` (every node logs the same).
+std::vector<double> run_instants(const ScenePlan& plan, const std::string& run_dir);
 
 // The reference's own error, estimated as its difference from a re-run of the scene at a
 // tighter tolerance (rtol and atol divided by `factor`): while the integration error falls

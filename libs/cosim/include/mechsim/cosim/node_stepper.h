@@ -14,6 +14,7 @@
 #include "mechsim/cosim/coupling/interface_jacobian.h"
 #include "mechsim/cosim/input_channel.h"
 #include "mechsim/cosim/scene_plan.h"
+#include "mechsim/cosim/step_control.h"
 #include "mechsim/cosim/step_grid.h"
 #include "mechsim/solve/block_integrator.h"
 
@@ -38,8 +39,9 @@ struct StepperSnapshot {
 class NodeStepper {
  public:
   // `node` must outlive the stepper (it owns the block). `grid`: the plan's (ScenePlan::grid),
-  // the same for every node of the run.
-  NodeStepper(PlannedNode& node, std::shared_ptr<const StepGrid> grid);
+  // the same for every node of the run. With an adaptive grid, `participants` nodes agree
+  // on each step and this one is number `self` of them (the plan's node order).
+  NodeStepper(PlannedNode& node, std::shared_ptr<const StepGrid> grid, std::size_t participants = 1, std::size_t self = 0);
   const StepGrid& grid() const { return *grid_; }
 
   InputChannel& channel(std::size_t edge) { return channels_[edge]; }
@@ -48,7 +50,7 @@ class NodeStepper {
   // Step index of the outputs published last (after initialise(): 0).
   std::uint64_t step() const { return k_; }
   double time() const;
-  bool finished() const { return initialised_ && k_ >= grid_->steps(); }
+  bool finished() const { return initialised_ && grid_->at_end(k_); }
 
   bool can_initialise() const;
   // Computes the step-0 outputs. `topic_values` receives the published fields.
@@ -63,6 +65,17 @@ class NodeStepper {
   bool prediction_due() const;
   void predict(std::vector<double>& prediction_fields);
   void add_partner_prediction(std::uint64_t step, std::span<const double> fields);
+
+  // Adaptive macro step (grid().is_adaptive(); step_control.h): after its step-k outputs, once
+  // its Jacobi partners' step-k samples are there, the node proposes the length of step
+  // k -> k+1 and publishes the proposal on <node>/step; the step (and an interface-Jacobian
+  // prediction) waits until every participant's proposal of step k is there, when the grid
+  // gains t_k+1. add_proposal throws std::runtime_error when a participant proposes two
+  // different things for one step (a foreign writer).
+  bool proposal_due() const;
+  StepProposal propose();
+  void add_proposal(std::size_t participant, std::uint64_t step, const StepProposal& proposal);
+  std::size_t participant_index() const { return self_; }
 
   // All block outputs at the current step (for the run folder), and solver statistics.
   const std::vector<double>& outputs() const { return y_; }
@@ -97,6 +110,8 @@ class NodeStepper {
   void publishable(std::vector<double>& topic_values) const;
 
   bool inputs_ready(std::uint64_t k) const;
+  bool step_known() const { return grid_->knows_end_of(k_); }
+  void agree_if_complete();
 
   PlannedNode& node_;
   // Interface-Jacobian cut: this side, its prediction for step k_ (if made), the partner's
@@ -117,6 +132,11 @@ class NodeStepper {
   bool event_row_ready_ = false;
   std::uint64_t k_ = 0;
   bool initialised_ = false;
+  // Adaptive macro step: this node's estimate, the proposals of the step being agreed.
+  std::size_t self_ = 0;
+  std::optional<CouplingErrorEstimate> estimate_;
+  std::optional<StepAgreement> agreement_;
+  std::uint64_t proposed_step_ = UINT64_MAX;  // the step this node proposed for last
 };
 
 }  // namespace mechsim::cosim

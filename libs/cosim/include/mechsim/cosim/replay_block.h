@@ -21,6 +21,7 @@ namespace mechsim::cosim {
 // (in the field order of its type), for k = 0 .. steps.
 struct RecordedTopic {
   std::vector<std::vector<double>> rows;
+  std::vector<double> times;  // t_k of each row (the samples' own instants)
 };
 
 class ReplayBlock final : public models::Block {
@@ -31,6 +32,8 @@ class ReplayBlock final : public models::Block {
   ReplayBlock(const models::Block& replaced, const std::vector<int>& published_outputs, RecordedTopic recorded,
               std::shared_ptr<const StepGrid> grid);
   void calc_outputs(double t, std::span<const double> x, std::span<const double> u, std::span<double> y) const override;
+  // The recorded run's instants: a replay of an adaptive run steps where it stepped.
+  double next_instant_after(double t) const override;
   // The topic field of each output: the node's published_outputs for this block.
   std::vector<int> published_outputs() const;
 

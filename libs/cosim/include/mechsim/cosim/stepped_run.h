@@ -33,7 +33,7 @@ class SteppedRun {
       : scene_(std::make_unique<config::Scene>(config::load_scene(path, overrides))),
         plan_(std::make_unique<ScenePlan>(ScenePlan::build(*scene_))) {
     for (auto& node : plan_->nodes()) {
-      steppers_.push_back(std::make_unique<NodeStepper>(node, plan_->grid()));
+      steppers_.push_back(std::make_unique<NodeStepper>(node, plan_->grid(), plan_->nodes().size(), steppers_.size()));
       std::vector<std::string> names;
       for (const auto& o : node.block->outputs()) names.push_back(o.name);
       guards_.push_back(std::make_unique<DivergenceGuard>(names));
@@ -46,7 +46,9 @@ class SteppedRun {
   const ScenePlan& plan() const { return *plan_; }
   // Called with (node index, step, the node's outputs) each time a node publishes a step.
   std::function<void(std::size_t, std::uint64_t, const std::vector<double>&)> on_publish;
+  // Steps of the run (adaptive: the steps agreed so far; advance(kToTheEnd) runs to the end).
   std::uint64_t steps() const { return plan_->grid()->steps(); }
+  static constexpr std::uint64_t kToTheEnd = UINT64_MAX;
   const std::optional<std::string>& diverged() const { return diverged_; }
   // Spring energy T^2/(2C) per step (max over the nodes that publish coupling_torque).
   const std::vector<double>& energy() const { return energy_; }
@@ -73,6 +75,12 @@ class SteppedRun {
           s.initialise(values_);
           initialised_[i] = true;
           publish(i);
+          progressed = true;
+        }
+        if (initialised_[i] && s.step() < target && s.proposal_due()) {
+          const StepProposal p = s.propose();
+          for (std::size_t j = 0; j < n; ++j)
+            if (j != i) steppers_[j]->add_proposal(i, s.step(), p);
           progressed = true;
         }
         if (initialised_[i] && s.step() < target && s.prediction_due()) {

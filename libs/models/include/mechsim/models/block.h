@@ -12,6 +12,7 @@
 // see DDS, YAML or files: parameters arrive as plain structs.
 #pragma once
 
+#include <limits>
 #include <optional>
 #include <span>
 #include <string>
@@ -119,6 +120,15 @@ class Block {
     double angle(double t) const { return angle0 + speed * t; }
   };
   virtual std::optional<UniformRotation> uniform_rotation() const { return std::nullopt; }
+  // Angles [rad, in [0, 2 pi)] of the block's own output `angle` at which its law changes
+  // from one formula to the next without a jump (a cam law's joints: the torque of the
+  // follower kinks there). A fixed grid takes no notice; an adaptive macro step lands on
+  // them where the shaft turns uniformly and starts again from its initial length, since
+  // the error of the step before says nothing of the piece after. Default: none.
+  virtual std::vector<double> angle_law_changes() const { return {}; }
+  // A block that knows the run's instants ahead (the replay of a run with an adaptive macro
+  // step) names the first after t: the step from t ends there. Default: +inf, none.
+  virtual double next_instant_after(double /*t*/) const { return std::numeric_limits<double>::infinity(); }
 
   // --- checkpoints: the mode / discrete state that is not integrated ------------------
   virtual std::vector<double> save_discrete_state() const { return {}; }

@@ -67,6 +67,8 @@ class CamShaftBlock : public Block {
   // At constant speed (neither driven nor with a torque-source drive) the angle is a
   // function of time: the followers' load boundaries become times (Block::angle_events).
   std::optional<UniformRotation> uniform_rotation() const override;
+  // The joints of the lift law (every piece's start, dwells included).
+  std::vector<double> angle_law_changes() const override;
   bool is_driven() const { return params_.gear_ratio > 0.0; }
   // ω̇ of a torque drive at speed ω under the given load (0 for a speed source).
   double angular_acceleration(double speed, double load_torque_rest, double reflected_inertia) const;

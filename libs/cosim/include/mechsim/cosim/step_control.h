@@ -1,0 +1,121 @@
+// The adaptive macro step (time.step: adaptive; docs/accuracy.md "Adaptive macro step"),
+// without transport:
+//  - CouplingErrorEstimate: one node's estimate of the coupling error of the step it just
+//    took, from its own inputs: on a Jacobi edge the value it reconstructed at t_k (held or
+//    extrapolated) against the partner's step-k sample that has now arrived; on a
+//    Gauss-Seidel edge the step-k sample against the line through the two samples before it
+//    (the curvature its linear interpolation missed). Each field's difference is divided by
+//    the field's scale (the largest of its range and its magnitude so far).
+//  - propose_step: the elementary controller. With the estimate e of order q (the power of
+//    H it falls with: hold 1, linear and Gauss-Seidel 2, quadratic 3) the next step is
+//    H_k-1 * 0.8 (tol / e)^(1/q), at most 1.5 H_k-1 and at least H_k-1 / 5, inside [min, max].
+//    No step is redone (that would need every node to roll back): the controller is kept
+//    conservative instead (the 0.8 and the 1.5), and a step whose estimate exceeds the
+//    tolerance only makes the next one shorter.
+//  - StepAgreement: every node's proposal for step k -> k+1; once all are there, t_k+1 is
+//    t_k plus the smallest proposed length, or the earliest discontinuity a proposal
+//    announces when that comes first, or the end. Every node computes the same function of
+//    the same doubles, so all agree bit for bit with no round trip through the launcher.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "mechsim/config/scene.h"
+
+namespace mechsim::cosim {
+
+// One node's proposal for step k -> k+1 (what it publishes on <node>/step).
+struct StepProposal {
+  double step_length = 0.0;   // s
+  // An instant the step must end on when it comes before t_k + step_length (+inf: none):
+  // a discontinuity the node announces (event), or an instant of a recorded run (a replay).
+  double event_time = std::numeric_limits<double>::infinity();
+  bool event = false;         // event_time is a discontinuity (the row logged there is after it)
+  double error_estimate = 0.0;  // e / tol of the step before (NaN when none yet)
+  bool operator==(const StepProposal& o) const {
+    const bool same_estimate = error_estimate == o.error_estimate || (error_estimate != error_estimate && o.error_estimate != o.error_estimate);
+    return step_length == o.step_length && event == o.event && event_time == o.event_time && same_estimate;
+  }
+};
+
+// The agreed end of step k -> k+1.
+struct AgreedStep {
+  double t_next = 0.0;
+  bool event = false;
+};
+
+class CouplingErrorEstimate {
+ public:
+  // An inbound edge: its kind, and the fields of its topic the node uses (the others, which
+  // feed no input, are no error of this node).
+  struct Edge {
+    config::EdgeOrder order;
+    config::Reconstruction reconstruction;
+    std::vector<std::size_t> fields;
+  };
+  explicit CouplingErrorEstimate(std::vector<Edge> edges);
+  // After step k-1 -> k: what channel `edge` reconstructed at t_k (on a Gauss-Seidel edge
+  // that is the step-k sample itself).
+  void used_at_step_end(std::size_t edge, std::uint64_t k, double t_k, std::span<const double> values);
+  // The partner's step-k sample of a Jacobi edge, once it is there.
+  void received(std::size_t edge, std::uint64_t k, std::span<const double> values);
+  // e / tol for the step that ended at t_k, and the order of the channel that decides the
+  // next step (the smallest factor); nullopt when no channel can tell yet (the first steps).
+  struct Result {
+    double ratio;  // e / tol
+    int order;
+  };
+  std::optional<Result> ratio_at(std::uint64_t k, double tolerance) const;
+
+ private:
+  struct Channel {
+    config::EdgeOrder order;
+    int error_order;
+    std::vector<std::size_t> fields;
+    std::uint64_t used_step = UINT64_MAX;
+    std::vector<double> used;                 // reconstructed at t_used_step
+    std::uint64_t received_step = UINT64_MAX;
+    std::vector<double> received;             // Jacobi: the partner's sample of received_step
+    // Gauss-Seidel: the samples of the last three steps with their instants (oldest first).
+    std::vector<std::pair<double, std::vector<double>>> history;
+    std::uint64_t history_step = UINT64_MAX;  // the step of history.back()
+    std::vector<double> lo, hi;               // per field, over every value seen
+    void widen(std::span<const double> v);
+    double scale(std::size_t f) const;
+  };
+  std::vector<Channel> channels_;
+};
+
+// The controller's proposal for step k -> k+1 of a run with t_k = `t`, the step before of
+// length `last_h` (0 at k = 0: the spec's initial step) and the estimate (nullopt: keep
+// last_h). The scheduled discontinuities of the grid are landed on by the caller.
+StepProposal propose_step(const config::AdaptiveStepSpec& spec, double last_h,
+                          const std::optional<CouplingErrorEstimate::Result>& estimate);
+
+// The participants' proposals, by step.
+class StepAgreement {
+ public:
+  StepAgreement(std::size_t participants, const config::AdaptiveStepSpec& spec, double end)
+      : participants_(participants), spec_(spec), end_(end) {}
+  // False when the participant already proposed something else for step k (a foreign writer
+  // or a bug: the caller refuses it). The caller leaves out proposals of steps it has passed.
+  bool add(std::size_t participant, std::uint64_t k, const StepProposal& p);
+  bool complete(std::uint64_t k) const;
+  // Requires complete(k): the end of step k -> k+1 starting at t_k.
+  AgreedStep agreed(std::uint64_t k, double t_k) const;
+  // Forgets the proposals of steps before k.
+  void discard_before(std::uint64_t k);
+
+ private:
+  std::size_t participants_;
+  config::AdaptiveStepSpec spec_;
+  double end_;
+  std::map<std::uint64_t, std::map<std::size_t, StepProposal>> by_step_;
+};
+
+}  // namespace mechsim::cosim

@@ -1,0 +1,276 @@
+// The adaptive macro step (step_control.h, docs/accuracy.md "Adaptive macro step"): the
+// estimate against hand-computed values, the controller's limits, the agreement rule, the
+// growing grid; then whole runs in process: steps land on every kind of scheduled event,
+// the run reaches its end exactly, the by-hand stepping (SteppedRun) and the node threads over
+// the in-process transport (run_inproc) give the same bytes, and a tighter tolerance takes
+// more, shorter steps and a smaller error.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "mechsim/cosim/composer.h"
+#include "mechsim/cosim/inproc_run.h"
+#include "mechsim/cosim/output_log.h"
+#include "mechsim/cosim/scene_plan.h"
+#include "mechsim/cosim/step_control.h"
+#include "mechsim/cosim/stepped_run.h"
+#include "scene_files.h"
+
+namespace mechsim::cosim {
+namespace {
+
+namespace fs = std::filesystem;
+using config::EdgeOrder;
+using config::Reconstruction;
+
+config::AdaptiveStepSpec spec(double tol = 1e-3, double min = 1e-6, double max = 1e-2, double initial = 1e-4) {
+  config::AdaptiveStepSpec s;
+  s.tolerance = tol;
+  s.min = min;
+  s.max = max;
+  s.initial = initial;
+  return s;
+}
+
+TEST(CouplingErrorEstimate, AHeldRampIsOffByItsSlopeTimesTheStep) {
+  // u = 2 t on [0, 1] s so far: range 2 after t = 1. Held over the step 0.9 -> 1.0, the
+  // node used u(0.9) = 1.8 at t = 1.0; the partner's sample is 2.0: e = 0.2 / 2 = 0.1.
+  CouplingErrorEstimate est({{EdgeOrder::jacobi, Reconstruction::hold, {0}}});
+  est.used_at_step_end(0, 9, 0.9, std::vector<double>{0.0});  // an older step: widens the range
+  est.used_at_step_end(0, 10, 1.0, std::vector<double>{1.8});
+  EXPECT_FALSE(est.ratio_at(10, 1e-2).has_value()) << "no estimate before the sample of step 10";
+  est.received(0, 10, std::vector<double>{2.0});
+  const auto r = est.ratio_at(10, 1e-2);
+  ASSERT_TRUE(r.has_value());
+  EXPECT_DOUBLE_EQ(r->ratio, 0.1 / 1e-2);
+  EXPECT_EQ(r->order, 1);
+}
+
+TEST(CouplingErrorEstimate, FieldsTheNodeDoesNotUseAreNoError) {
+  CouplingErrorEstimate est({{EdgeOrder::jacobi, Reconstruction::linear, {1}}});
+  est.used_at_step_end(0, 3, 0.3, std::vector<double>{0.0, 1.0});
+  est.received(0, 3, std::vector<double>{1000.0, 1.0});  // field 0 jumps, but feeds no input
+  const auto r = est.ratio_at(3, 1e-3);
+  ASSERT_TRUE(r.has_value());
+  EXPECT_EQ(r->ratio, 0.0);
+  EXPECT_EQ(r->order, 2);
+}
+
+TEST(CouplingErrorEstimate, AGaussSeidelEdgeMeasuresTheCurvatureItsInterpolationMisses) {
+  // u = t^2 at t = 0, 1, 2 (uneven steps would work the same): the line through the first
+  // two predicts 2 at t = 2, the sample is 4; scale max(range 4, |u| 4) = 4: e = 0.5.
+  CouplingErrorEstimate est({{EdgeOrder::gauss_seidel, Reconstruction::hold, {0}}});
+  est.used_at_step_end(0, 1, 0.0, std::vector<double>{0.0});
+  est.used_at_step_end(0, 2, 1.0, std::vector<double>{1.0});
+  EXPECT_FALSE(est.ratio_at(2, 0.1).has_value()) << "two samples tell no curvature";
+  est.used_at_step_end(0, 3, 2.0, std::vector<double>{4.0});
+  const auto r = est.ratio_at(3, 0.1);
+  ASSERT_TRUE(r.has_value());
+  EXPECT_DOUBLE_EQ(r->ratio, 0.5 / 0.1);
+  EXPECT_EQ(r->order, 2);
+}
+
+TEST(StepController, ScalesTheStepByTheEstimateWithinItsLimits) {
+  const auto s = spec();
+  // e = tol / 16 of order 2: factor 0.8 * 16^(1/2) = 3.2, limited to 1.5.
+  EXPECT_DOUBLE_EQ(propose_step(s, 1e-3, CouplingErrorEstimate::Result{1.0 / 16, 2}).step_length, 1.5e-3);
+  // e = 4 tol of order 2: 0.8 / 2 = 0.4.
+  EXPECT_DOUBLE_EQ(propose_step(s, 1e-3, CouplingErrorEstimate::Result{4.0, 2}).step_length, 0.4e-3);
+  // e = 10^4 tol: at most a fifth, then min.
+  EXPECT_DOUBLE_EQ(propose_step(s, 1e-3, CouplingErrorEstimate::Result{1e4, 1}).step_length, 0.2e-3);
+  EXPECT_DOUBLE_EQ(propose_step(s, 2e-6, CouplingErrorEstimate::Result{1e4, 1}).step_length, 1e-6);
+  EXPECT_DOUBLE_EQ(propose_step(s, 9e-3, CouplingErrorEstimate::Result{0.0, 1}).step_length, 1e-2);  // max
+  // The first step, and a node with nothing to estimate yet.
+  EXPECT_DOUBLE_EQ(propose_step(s, 0.0, std::nullopt).step_length, 1e-4);
+  EXPECT_DOUBLE_EQ(propose_step(s, 3e-4, std::nullopt).step_length, 3e-4);
+}
+
+StepProposal proposal(double h, double event_time = HUGE_VAL, bool event = false) {
+  StepProposal p;
+  p.step_length = h;
+  p.event_time = event_time;
+  p.event = event;
+  return p;
+}
+
+TEST(StepAgreement, TheSmallestProposalTheNextEventAndTheEnd) {
+  StepAgreement a(3, spec(), 1.0);
+  const double t = 0.5;
+  EXPECT_TRUE(a.add(0, 7, proposal(2e-3)));
+  EXPECT_TRUE(a.add(2, 7, proposal(1e-3)));
+  EXPECT_FALSE(a.complete(7));
+  EXPECT_TRUE(a.add(2, 7, proposal(1e-3))) << "the same proposal twice is a duplicate";
+  EXPECT_FALSE(a.add(2, 7, proposal(3e-3))) << "another proposal for the same step is refused";
+  EXPECT_TRUE(a.add(1, 7, proposal(5e-3, 0.5035, true)));
+  ASSERT_TRUE(a.complete(7));
+  EXPECT_EQ(a.agreed(7, t).t_next, t + 1e-3);
+  EXPECT_FALSE(a.agreed(7, t).event);
+  // An event before the smallest proposal's end: the step ends on it.
+  StepAgreement b(2, spec(), 1.0);
+  b.add(0, 0, proposal(1e-3));
+  b.add(1, 0, proposal(4e-3, 0.5004, true));
+  EXPECT_EQ(b.agreed(0, t).t_next, 0.5004);
+  EXPECT_TRUE(b.agreed(0, t).event);
+  // An instant that is no event (a replay's recorded instant): landed on, not an event.
+  StepAgreement r(2, spec(), 1.0);
+  r.add(0, 0, proposal(1e-3));
+  r.add(1, 0, proposal(1e-2, 0.5007));
+  EXPECT_EQ(r.agreed(0, t).t_next, 0.5007);
+  EXPECT_FALSE(r.agreed(0, t).event);
+  // An event less than `min` beyond it: landed on rather than left for a sliver.
+  StepAgreement c(1, spec(1e-3, 1e-5), 1.0);
+  c.add(0, 0, proposal(1e-3, 0.501005, true));
+  EXPECT_EQ(c.agreed(0, t).t_next, 0.501005);
+  // The end, within `min`: reached exactly.
+  StepAgreement d(1, spec(1e-3, 1e-5), 1.0);
+  d.add(0, 0, proposal(1e-3));
+  EXPECT_EQ(d.agreed(0, 0.999).t_next, 1.0);
+  EXPECT_EQ(d.agreed(0, 0.99899).t_next, 0.99899 + 1e-3) << "farther than min from the end";
+}
+
+TEST(AdaptiveGrid, GrowsByAgreedInstantsAndRefusesAnotherEnd) {
+  config::TimeSpec time;
+  time.start = 0.0;
+  time.end = 1.0;
+  time.adaptive = spec();
+  time.step = time.adaptive->max;
+  const StepGrid g = StepGrid::adaptive(time, {0.25, 0.75, 2.0});
+  EXPECT_TRUE(g.is_adaptive());
+  EXPECT_EQ(g.steps(), 0u);
+  EXPECT_FALSE(g.knows_end_of(0));
+  g.extend(0, 0.1, false);
+  g.extend(0, 0.1, false);  // a second node of the same process agrees the same
+  EXPECT_THROW(g.extend(0, 0.2, false), std::logic_error);
+  EXPECT_THROW(g.extend(2, 0.3, false), std::logic_error);
+  g.extend(1, 0.25, true);
+  EXPECT_EQ(g.steps(), 2u);
+  EXPECT_TRUE(g.is_event(2));
+  EXPECT_FALSE(g.is_event(1));
+  EXPECT_EQ(g.step_at(0.25), 2u);
+  EXPECT_EQ(g.next_scheduled_event(0.25), 0.75);
+  EXPECT_EQ(g.next_scheduled_event(0.75), HUGE_VAL) << "2.0 is past the end";
+  EXPECT_FALSE(g.at_end(2));
+  g.extend(2, 1.0, false);
+  EXPECT_TRUE(g.at_end(3));
+}
+
+// A whole adaptive run stepped by hand; returns its plan's grid instants.
+std::vector<double> stepped_instants(SteppedRun& run) {
+  run.advance(SteppedRun::kToTheEnd);
+  EXPECT_FALSE(run.diverged()) << *run.diverged();
+  const StepGrid& g = *run.plan().grid();
+  std::vector<double> t;
+  for (std::uint64_t k = 0; k <= g.steps(); ++k) t.push_back(g.time(k));
+  return t;
+}
+
+void expect_events_landed(const ScenePlan& plan, const StepGrid& grid) {
+  ASSERT_FALSE(plan.scheduled_events().empty());
+  for (const auto& e : plan.scheduled_events()) {
+    const auto k = grid.step_at(e.t);
+    ASSERT_TRUE(k.has_value()) << e.participant << ": no step boundary at its event t = " << e.t;
+    EXPECT_TRUE(grid.is_event(*k)) << e.t;
+  }
+}
+
+TEST(AdaptiveRun, TheCamPressLandsOnEveryFollowerLoadBoundaryAndEndsOnTheEnd) {
+  SteppedRun run(testing::shipped_scene("cam_press.yaml"), {"time.step=adaptive", "time.tolerance=1e-3", "time.max=4 ms"});
+  const std::vector<double> t = stepped_instants(run);
+  expect_events_landed(run.plan(), *run.plan().grid());
+  EXPECT_EQ(t.back(), 2.0);
+  for (std::size_t k = 1; k < t.size(); ++k) ASSERT_LE(t[k] - t[k - 1], 4e-3 * (1 + 1e-12)) << k;
+}
+
+TEST(AdaptiveRun, TheServoSetpointCornersLandOnStepBoundaries) {
+  SteppedRun run(testing::shipped_scene("nc_slide_loop.yaml"),
+                 {"participants.servo.params.setpoint.start=0.53 ms", "time.end=4 ms", "time.step=adaptive", "time.max=50 us",
+                  "time.min=0.1 us"});
+  stepped_instants(run);
+  expect_events_landed(run.plan(), *run.plan().grid());
+}
+
+TEST(AdaptiveRun, TheRatioScheduleLandsOnAStepBoundary) {
+  SteppedRun run(testing::shipped_scene("extreme/press_line_ratio_step.yaml"),
+                 {"time.end=1 s", "time.step=adaptive", "time.max=4 ms", "time.tolerance=1e-2"});
+  stepped_instants(run);
+  expect_events_landed(run.plan(), *run.plan().grid());
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// The node threads over the in-process transport agree on the steps through <node>/step
+// and give the bytes of the by-hand stepping, node by node.
+TEST(AdaptiveRun, NodeThreadsGiveTheBytesOfTheSteppedRun) {
+  const std::vector<std::string> overrides{"time.step=adaptive", "time.tolerance=1e-3", "time.end=0.5 s"};
+  const fs::path dir = fs::temp_directory_path() / ("mechsim-adaptive-" + std::to_string(::getpid()));
+  fs::create_directories(dir / "a");
+  fs::create_directories(dir / "b");
+  const config::Scene scene = config::load_scene(testing::shipped_scene("cam_press.yaml"), overrides);
+  for (const char* sub : {"a", "b"}) {
+    InprocRunOptions options;
+    options.run_dir = (dir / sub).string();
+    const InprocRunResult r = run_inproc(scene, options);
+    ASSERT_TRUE(r.ok) << r.reason;
+  }
+  SteppedRun stepped(testing::shipped_scene("cam_press.yaml"), overrides);
+  const std::vector<double> t = stepped_instants(stepped);
+  for (const auto& node : stepped.plan().nodes()) {
+    const std::string file = node.name() + ".outputs.bin";
+    EXPECT_TRUE(slurp(dir / "a" / file) == slurp(dir / "b" / file)) << file << " differs between two runs";
+    const OutputLog log = read_output_log((dir / "a" / file).string());
+    EXPECT_EQ(log.data[0], t) << node.name() << " logged other instants than the stepped run agreed";
+  }
+  fs::remove_all(dir);
+}
+
+// Max error of the cam's shaft torque against the reference on the run's own instants,
+// relative to the reference's range.
+double shaft_torque_error(const std::vector<std::string>& overrides, std::size_t* steps) {
+  const fs::path dir = fs::temp_directory_path() / ("mechsim-adaptive-err-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const config::Scene scene = config::load_scene(testing::shipped_scene("cam_press.yaml"), overrides);
+  InprocRunOptions options;
+  options.run_dir = dir.string();
+  const InprocRunResult r = run_inproc(scene, options);
+  EXPECT_TRUE(r.ok) << r.reason;
+  ScenePlan plan = ScenePlan::build(scene);
+  const ReferenceRun ref = run_reference_at(plan, run_instants(plan, dir.string()));
+  const OutputLog log = read_output_log((dir / "cam.outputs.bin").string());
+  fs::remove_all(dir);
+  const auto& c = log.data[static_cast<std::size_t>(log.column("shaft_torque"))];
+  const auto& y = ref.log.data[static_cast<std::size_t>(ref.log.column("cam.shaft_torque"))];
+  double lo = HUGE_VAL, hi = -HUGE_VAL, worst = 0;
+  for (std::size_t k = 0; k < y.size(); ++k) {
+    lo = std::min(lo, y[k]);
+    hi = std::max(hi, y[k]);
+    worst = std::max(worst, std::abs(c[k] - y[k]));
+  }
+  *steps = y.size() - 1;
+  return worst / (hi - lo);
+}
+
+TEST(AdaptiveRun, ATighterToleranceTakesMoreStepsForASmallerError) {
+  std::size_t loose_steps = 0, tight_steps = 0;
+  const double loose = shaft_torque_error({"time.step=adaptive", "time.tolerance=1e-2", "time.max=10 ms"}, &loose_steps);
+  const double tight = shaft_torque_error({"time.step=adaptive", "time.tolerance=1e-3", "time.max=10 ms"}, &tight_steps);
+  std::printf("[ adaptive ] cam_press shaft torque: tol 1e-2: %zu steps, max error %.3g of range; tol 1e-3: %zu steps, %.3g\n",
+              loose_steps, loose, tight_steps, tight);
+  EXPECT_GT(tight_steps, loose_steps);
+  // A first-order (held) edge decides: ten times the tolerance, at least three times the error.
+  EXPECT_LT(tight, loose / 3);
+}
+
+}  // namespace
+}  // namespace mechsim::cosim
