@@ -90,14 +90,30 @@ AdaptiveStepSpec parse_adaptive_step(const ConfigNode& t, double duration) {
   // Each node keeps the instants of the run's steps (a double each): bounded here.
   if (duration / a.min > 1e8) t.child("min").fail("expected at most 1e8 steps of the smallest length (end - start) / min");
   a.initial = t.has("initial") ? t.positive_quantity("initial", dim::time) : a.min;
-  if (!(a.initial >= a.min && a.initial <= a.max)) t.child("initial").fail("expected a first step between min and max");
+  if (auto scales = t.optional_child("scales")) {
+    if (!scales->is_map()) scales->fail("expected a map {participant: {field: value}}, e.g. {follower: {drive_torque: 20 N m}}");
+    for (const std::string& participant : scales->keys()) {
+      const ConfigNode fields = scales->child(participant);
+      if (!fields.is_map()) fields.fail("expected a map {field: value} of what '" + participant + "' publishes");
+      for (const std::string& field : fields.keys()) {
+        double v = 0.0;
+        try {
+          v = parse_quantity(fields.child(field).as_string()).value_si;
+        } catch (const std::exception& e) {
+          fields.child(field).fail(std::string("expected a value (SI, or with its unit): ") + e.what());
+        }
+        if (!(v > 0) || !std::isfinite(v)) fields.child(field).fail("expected a positive scale");
+        a.scales.emplace_back(participant + "." + field, v);
+      }
+    }
+  }
   return a;
 }
 
 TimeSpec parse_time(const ConfigNode& t) {
   TimeSpec spec;
   const bool adaptive = t.has("step") && t.child("step").is_scalar() && t.child("step").as_string() == "adaptive";
-  if (adaptive) t.allow_only({"start", "end", "step", "tolerance", "min", "max", "initial"});
+  if (adaptive) t.allow_only({"start", "end", "step", "tolerance", "min", "max", "initial", "scales"});
   else t.allow_only({"start", "end", "step"});
   spec.start = t.has("start") ? t.quantity("start", dim::time) : 0.0;
   spec.end = t.quantity("end", dim::time);

@@ -23,8 +23,11 @@ NodeStepper::NodeStepper(PlannedNode& node, std::shared_ptr<const StepGrid> grid
   if (grid_->is_adaptive()) {
     std::vector<CouplingErrorEstimate::Edge> edges;
     for (const auto& edge : node.inputs) {
-      CouplingErrorEstimate::Edge e{edge.order, edge.reconstruction, {}};
+      CouplingErrorEstimate::Edge e{edge.order, edge.reconstruction, {}, std::vector<double>(edge.type->fields.size(), 0.0)};
       for (const auto& [field, input] : edge.field_to_input) e.fields.push_back(static_cast<std::size_t>(field));
+      for (const auto& [key, value] : grid_->adaptive_spec().scales)
+        for (std::size_t f = 0; f < edge.type->fields.size(); ++f)
+          if (key == edge.from + "." + edge.type->fields[f].name) e.scales[f] = value;
       edges.push_back(std::move(e));
     }
     estimate_.emplace(std::move(edges));

@@ -330,6 +330,16 @@ ScenePlan ScenePlan::build(const config::Scene& scene) {
     for (const auto* list : {&r.supplied, &r.dissipated, &r.stored})
       for (const auto& s : *list) plan.resolve(s);
   }
+  // time.scales names topic fields: each must be one a participant publishes.
+  if (scene.time.adaptive)
+    for (const auto& [key, value] : scene.time.adaptive->scales) {
+      const auto dot = key.find('.');
+      const config::ParticipantSpec* p = dot == std::string::npos ? nullptr : scene.find_participant(key.substr(0, dot));
+      if (!p) refuse(scene, "time.scales." + key.substr(0, dot), "expected a participant of this scene");
+      const PlannedNode& publisher = plan.node(p->name);
+      if (publisher.type->publishes->field_index(key.substr(dot + 1)) < 0)
+        refuse(scene, "time.scales." + key, "expected a field of " + publisher.type->publishes->idl_name + " (what '" + p->name + "' publishes)");
+    }
   plan.land_on_scheduled_events();  // after the edges: angle events follow the `angle` input to its publisher
   return plan;
 }

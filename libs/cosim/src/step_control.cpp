@@ -37,8 +37,9 @@ void CouplingErrorEstimate::Channel::widen(std::span<const double> v) {
 }
 
 double CouplingErrorEstimate::Channel::scale(std::size_t f) const {
-  if (f >= lo.size() || !(hi[f] >= lo[f])) return 0.0;
-  return std::max(hi[f] - lo[f], std::max(std::abs(lo[f]), std::abs(hi[f])));
+  const double least = f < least_scale.size() ? least_scale[f] : 0.0;
+  if (f >= lo.size() || !(hi[f] >= lo[f])) return least;
+  return std::max(least, std::max(hi[f] - lo[f], std::max(std::abs(lo[f]), std::abs(hi[f]))));
 }
 
 CouplingErrorEstimate::CouplingErrorEstimate(std::vector<Edge> edges) {
@@ -47,6 +48,7 @@ CouplingErrorEstimate::CouplingErrorEstimate(std::vector<Edge> edges) {
     c.order = edge.order;
     c.error_order = error_order(edge.order, edge.reconstruction);
     c.fields = std::move(edge.fields);
+    c.least_scale = std::move(edge.scales);
     channels_.push_back(std::move(c));
   }
 }

@@ -23,6 +23,10 @@ struct AdaptiveStepSpec {
   double min = 0.0;         // s
   double max = 0.0;         // s
   double initial = 0.0;     // s, the first step's length
+  // `scales: {participant: {field: value}}`: the size of a topic field's values the error is
+  // measured against from the start (otherwise its range and magnitude so far), SI; kept as
+  // ("participant.field", value).
+  std::vector<std::pair<std::string, double>> scales;
 };
 
 struct TimeSpec {

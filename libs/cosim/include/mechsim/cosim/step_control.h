@@ -57,6 +57,7 @@ class CouplingErrorEstimate {
     config::EdgeOrder order;
     config::Reconstruction reconstruction;
     std::vector<std::size_t> fields;
+    std::vector<double> scales = {};  // per topic field: the least scale (time.scales), 0: none
   };
   explicit CouplingErrorEstimate(std::vector<Edge> edges);
   // After step k-1 -> k: what channel `edge` reconstructed at t_k (on a Gauss-Seidel edge
@@ -85,6 +86,7 @@ class CouplingErrorEstimate {
     std::vector<std::pair<double, std::vector<double>>> history;
     std::uint64_t history_step = UINT64_MAX;  // the step of history.back()
     std::vector<double> lo, hi;               // per field, over every value seen
+    std::vector<double> least_scale;          // per field (time.scales), may be empty
     void widen(std::span<const double> v);
     double scale(std::size_t f) const;
   };
