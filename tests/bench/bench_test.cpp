@@ -11,6 +11,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 
 #include <nlohmann/json.hpp>
 
@@ -86,12 +87,15 @@ TEST_F(BenchQuick, EveryRowHasFiniteErrorsAboveTheReferenceError) {
   const json& rows = doc()["rows"];
   // Every scheme x 4 steps x (rtol 1e-6 and 1e-9), and --quick keeps at least the
   // zero-order-hold and linear Jacobi schemes (the scene ships jacobi/hold).
+  // The adaptive rows (step_s null, a tolerance) come on top.
   const json& schemes = doc()["options"]["schemes"];
   ASSERT_GE(schemes.size(), 2u) << schemes.dump();
-  ASSERT_EQ(rows.size(), schemes.size() * 4 * 2);
+  std::size_t fixed = 0;
+  for (const auto& r : rows) fixed += r["step_s"].is_number() ? 1 : 0;
+  ASSERT_EQ(fixed, schemes.size() * 4 * 2);
   int numbers = 0;
   for (const auto& r : rows) {
-    SCOPED_TRACE(r["scheme"].get<std::string>() + " H " + std::to_string(r["step_s"].get<double>()));
+    SCOPED_TRACE(r["scheme"].get<std::string>() + " H " + r["step_s"].dump() + " tolerance " + r.value("tolerance", json()).dump());
     // A decade around the scene's step is stable for these schemes (docs/accuracy.md).
     ASSERT_EQ(r["status"], "ok") << r["reason"];
     EXPECT_GT(r["solver_stats"]["steps"].get<long>(), 0);
@@ -114,6 +118,40 @@ TEST_F(BenchQuick, EveryRowHasFiniteErrorsAboveTheReferenceError) {
     }
   }
   EXPECT_GT(numbers, 0);
+}
+
+TEST_F(BenchQuick, AdaptivePointsAtEachQuickTolerance) {
+  // --quick: tolerances 1e-2 and 1e-3 with the shipped scheme (jacobi/hold) and the best
+  // fixed-H scheme at the scene's H; each measured against its own reference.
+  std::map<std::string, std::map<double, long>> steps;  // scheme -> tolerance -> macro steps
+  for (const auto& r : doc()["rows"]) {
+    if (!r.contains("tolerance")) continue;
+    SCOPED_TRACE(r["scheme"].get<std::string>() + " tolerance " + r["tolerance"].dump());
+    EXPECT_EQ(r["scheme"].get<std::string>().rfind("adaptive ", 0), 0u);
+    EXPECT_TRUE(r["step_s"].is_null());
+    ASSERT_EQ(r["status"], "ok") << r["reason"];
+    ASSERT_TRUE(r["error"]["max_rel"].is_number()) << r["error"].dump();
+    EXPECT_TRUE(std::isfinite(r["error"]["max_rel"].get<double>()));
+    EXPECT_GT(r["error"]["max_rel"].get<double>(), 0.0);
+    EXPECT_GT(r["wall_time_s"].get<double>(), 0.0);
+    EXPECT_EQ(r["reference"]["instants"].get<long>(), r["macro_steps"].get<long>() + 1);
+    steps[r["scheme"]][r["tolerance"].get<double>()] = r["macro_steps"].get<long>();
+  }
+  ASSERT_TRUE(steps.count("adaptive jacobi/hold")) << "no adaptive row of the shipped scheme";
+  for (const auto& [scheme, by_tol] : steps) {
+    ASSERT_EQ(by_tol.size(), 2u) << scheme;
+    // A tighter tolerance takes more macro steps.
+    EXPECT_GT(by_tol.at(1e-3), by_tol.at(1e-2)) << scheme;
+  }
+  // The comparison with fixed H at equal wall time: a curve per adaptive scheme.
+  const json& a = doc()["adaptive_vs_fixed"];
+  ASSERT_EQ(a["curves"].size(), steps.size()) << a.dump();
+  for (const auto& c : a["curves"]) {
+    EXPECT_EQ(c["points"].size(), 2u);
+    EXPECT_TRUE(c.contains("best_factor") && c.contains("target_5x_met") && c["rms"].contains("best_factor")) << c.dump();
+  }
+  EXPECT_NE(result_->output.find("vs best fixed H at equal wall time"), std::string::npos) << result_->output;
+  EXPECT_NE(result_->output.find("tol 1e-3"), std::string::npos) << result_->output;
 }
 
 TEST_F(BenchQuick, ObservedOrdersOfHoldAndLinearExtrapolation) {
@@ -163,7 +201,7 @@ TEST(BenchReference, AnErrorNotAboveTheReferencesOwnIsNeverANumber) {
   fs::create_directories(dir);
   const std::string scene = std::string(MECHSIM_SOURCE_DIR) + "/config/scenes/cam_flat_face.yaml";
   auto r = run_mechsim({"bench", scene, "--quick", "--dds-checks", "0", "--schemes", "gauss_seidel/hold,jacobi/hold",
-                        "--steps", "50 us,100 us", "--rtols", "1e-6", "--json", dir + "/b.json"},
+                        "--steps", "50 us,100 us", "--rtols", "1e-6", "--tolerances", "none", "--json", dir + "/b.json"},
                        dir + "/b.log", 60);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   std::ifstream f(dir + "/b.json");
@@ -184,7 +222,8 @@ TEST(BenchReference, AnErrorNotAboveTheReferencesOwnIsNeverANumber) {
     }
   }
   EXPECT_EQ(refused, 2);
-  EXPECT_EQ(measured, 2);
+  EXPECT_EQ(measured, 2);  // and no adaptive row: --tolerances none
+  EXPECT_TRUE(doc["adaptive_vs_fixed"]["curves"].empty());
   EXPECT_NE(r.output.find("<ref"), std::string::npos) << r.output;
   fs::remove_all(dir);
 }
@@ -198,6 +237,9 @@ TEST(BenchInput, RefusesBadInputWithAMessage) {
   r = run_mechsim({"bench", kScene, "--solvers", "euler"}, dir + "/b.log", 30);
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("euler"), std::string::npos) << r.output;
+  r = run_mechsim({"bench", kScene, "--tolerances", "1e-3,tight"}, dir + "/d.log", 30);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("--tolerances"), std::string::npos) << r.output;
   r = run_mechsim({"bench", kScene, "--schemes", "no_such_scheme"}, dir + "/c.log", 30);
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("no coupling scheme"), std::string::npos) << r.output;

@@ -37,6 +37,35 @@ TEST(BenchSteps, ParsesQuantitiesAndRefusesBadEntries) {
   EXPECT_THROW(parse_steps(" , "), std::invalid_argument);
 }
 
+TEST(BenchTolerances, ParsesNumbersOrNone) {
+  EXPECT_EQ(parse_tolerances("1e-3, 1e-2,1e-3"), (std::vector<double>{1e-2, 1e-3}));  // loosest first, once
+  EXPECT_TRUE(parse_tolerances("none").empty());
+  EXPECT_TRUE(parse_tolerances("").empty());
+  EXPECT_THROW(parse_tolerances("1e-3,tight"), std::invalid_argument);
+  EXPECT_THROW(parse_tolerances("0"), std::invalid_argument);
+  EXPECT_THROW(parse_tolerances("2"), std::invalid_argument);
+}
+
+TEST(BenchEnvelope, LeastErrorAtNoMoreWallTimeInterpolatedLogLog) {
+  // (wall, error): (1, 1e-2) and (4, 1e-4) are corners; (2, 5e-2) is above the envelope.
+  const std::vector<std::pair<double, double>> p{{2, 5e-2}, {4, 1e-4}, {1, 1e-2}, {8, 1e-3}};
+  int lo = -1, hi = -1;
+  EXPECT_NEAR(envelope_at(p, 1, &lo, &hi), 1e-2, 1e-15);
+  EXPECT_EQ(lo, 2);
+  EXPECT_EQ(hi, 2);
+  // Halfway in log wall time between the corners: halfway in log error.
+  EXPECT_NEAR(envelope_at(p, 2, &lo, &hi), 1e-3, 1e-15);
+  EXPECT_EQ(lo, 2);
+  EXPECT_EQ(hi, 1);
+  // After the last corner: flat.
+  EXPECT_NEAR(envelope_at(p, 6, &lo, &hi), 1e-4, 1e-15);
+  EXPECT_EQ(lo, 1);
+  // Outside the wall time range of the points.
+  EXPECT_TRUE(std::isnan(envelope_at(p, 0.5)));
+  EXPECT_TRUE(std::isnan(envelope_at(p, 9)));
+  EXPECT_TRUE(std::isnan(envelope_at({}, 1)));
+}
+
 TEST(BenchSchemes, ExplicitConnectionsGetJacobiAndGaussSeidelVariants) {
   const YAML::Node doc = YAML::Load(R"(
 connections:

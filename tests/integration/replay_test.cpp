@@ -87,6 +87,37 @@ TEST_F(ReplayTest, ReplayedAmplifierDrivesTheLiveNodesBitForBit) {
   EXPECT_NE(slurp((original_dir / "slide.outputs.bin").string()), slurp((run_folder("live") / "slide.outputs.bin").string()));
 }
 
+// An adaptive macro step: the replayed amplifier proposes the recorded run's instants, so
+// the live nodes step where they stepped and repeat their outputs bit for bit.
+TEST_F(ReplayTest, AReplayOfAnAdaptiveRunStepsWhereTheRunStepped) {
+  const std::vector<std::string> adaptive{"--end", "20 ms", "--set", "time.step=adaptive", "--set", "time.tolerance=1e-3",
+                                          "--set", "time.max=25 us", "--set", "time.min=0.1 us"};
+  auto args = adaptive;
+  args.insert(args.end(), {"--set", "record=true"});
+  auto original = run(launch_args(scene_path("nc_slide_loop.yaml"), "original", args), log("original"), 180);
+  ASSERT_EQ(original.exit_code, 0) << original.output;
+  const json s = summary("original");
+  EXPECT_TRUE(s["recording"]["complete"].get<bool>()) << s["recording"].dump(2);
+  const auto steps = s["steps"].get<std::uint64_t>();
+  EXPECT_GT(s["adaptive_step"]["longest_s"].get<double>(), 1.5 * s["adaptive_step"]["shortest_s"].get<double>())
+      << "the step did not vary: " << s["adaptive_step"].dump();
+  const fs::path original_dir = run_folder("original");
+  const std::string recording = (original_dir / "recording.mcap").string();
+
+  args = adaptive;
+  args.insert(args.end(), {"--replay", "servo=" + recording, "--set", "participants.servo.params.setpoint.distance=0.2 mm"});
+  auto replayed = run(launch_args(scene_path("nc_slide_loop.yaml"), "replayed", args), log("replayed"), 180);
+  ASSERT_EQ(replayed.exit_code, 0) << replayed.output;
+  EXPECT_EQ(summary("replayed")["steps"].get<std::uint64_t>(), steps);
+  for (const char* node : {"tacho", "slide"}) {
+    SCOPED_TRACE(node);
+    const std::string a = slurp((original_dir / (std::string(node) + ".outputs.bin")).string());
+    const std::string b = slurp((run_folder("replayed") / (std::string(node) + ".outputs.bin")).string());
+    EXPECT_GT(a.size(), steps * 8);
+    EXPECT_TRUE(a == b) << "outputs of the live node differ from the original run";
+  }
+}
+
 TEST_F(ReplayTest, ARecordingThatDoesNotFitTheSceneIsRefusedBeforeAnyProcessStarts) {
   auto original = run(launch_args(scene_path("nc_slide_loop.yaml"), "short", {"--end", "5 ms", "--set", "record=true"}),
                       log("short"), 180);
