@@ -36,6 +36,7 @@ void add_bench_command(CLI::App& app, int& exit_code) {
   auto schemes = std::make_shared<std::string>();
   auto solvers = std::make_shared<std::string>();
   auto rtols = std::make_shared<std::string>();
+  auto tolerances = std::make_shared<std::string>();
   auto stability = std::make_shared<bool>(false);
   add_scene_args(cmd, *args);
   cmd->add_option("--json", opt->json_path, "write every run as a JSON row, with orders, DDS checks and provenance");
@@ -47,6 +48,11 @@ void add_bench_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--solvers", *solvers, "node solvers, comma separated (default: cvode_bdf,cvode_adams,arkode_erk,arkode_dirk)");
   cmd->add_option("--rtol", opt->rtol, "node tolerance of the solver sweep (atol = rtol/1000)")->capture_default_str();
   cmd->add_option("--rtols", *rtols, "further node tolerances swept with cvode_bdf, comma separated (default: 1e-4,1e-8)");
+  auto* tol_opt = cmd->add_option(
+      "--tolerances", *tolerances,
+      "coupling tolerances of the adaptive macro step (time.step: adaptive), comma separated, run with the shipped "
+      "scheme and the best fixed-H scheme at the scene's H, cvode_bdf at --rtol (default: 1e-2,3e-3,1e-3,3e-4,1e-4; "
+      "--quick 1e-2,1e-3; 'none': no adaptive points)");
   cmd->add_option("--dds-checks", opt->dds_checks, "number of DDS spot checks through `mechsim launch` (default 2, --quick 1)");
   cmd->add_flag("--quick", opt->quick, "a small subset for CI: the shipped, zero-order-hold and linear schemes, 3 steps, cvode_bdf");
   cmd->add_option("--work-dir", opt->work_dir, "scratch folder for run logs (default: a fresh /tmp/mechsim-bench-*)");
@@ -89,6 +95,7 @@ void add_bench_command(CLI::App& app, int& exit_code) {
         if (used != r.size() || !(v > 0) || v >= 1) throw std::invalid_argument("--rtols: expected numbers in (0, 1), got '" + r + "'");
         o.rtols.push_back(v);
       }
+      if (tol_opt->count() > 0) o.tolerances = bench::parse_tolerances(*tolerances);
       if (!(o.rtol > 0) || o.rtol >= 1) throw std::invalid_argument("--rtol: expected a number in (0, 1)");
     } catch (const std::invalid_argument& e) {
       std::fprintf(stderr, "mechsim bench: %s\n", e.what());

@@ -16,8 +16,12 @@ void add_check_command(CLI::App& app, int& exit_code) {
     try {
       config::Scene scene = config::load_scene(args->scene, args->overrides());
       cosim::ScenePlan plan = cosim::ScenePlan::build(scene);
-      std::printf("%s: scene '%s' is valid: %ld steps of %g s, %zu participants\n", scene.file.c_str(),
-                  scene.name.c_str(), static_cast<long>(plan.grid()->steps()), scene.time.step, plan.nodes().size());
+      if (const auto& a = scene.time.adaptive)
+        std::printf("%s: scene '%s' is valid: an adaptive step of %g .. %g s (tolerance %g), %zu participants\n",
+                    scene.file.c_str(), scene.name.c_str(), a->min, a->max, a->tolerance, plan.nodes().size());
+      else
+        std::printf("%s: scene '%s' is valid: %ld steps of %g s, %zu participants\n", scene.file.c_str(),
+                    scene.name.c_str(), static_cast<long>(plan.grid()->steps()), scene.time.step, plan.nodes().size());
       for (const auto& e : plan.scheduled_events())
         std::printf("  a step lands on t = %.9g s (scheduled by %s)\n", e.t, e.participant.c_str());
       for (const auto& node : plan.nodes()) {

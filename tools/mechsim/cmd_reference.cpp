@@ -36,7 +36,15 @@ void add_reference_command(CLI::App& app, int& exit_code) {
     }
     try {
       cosim::ScenePlan plan = cosim::ScenePlan::build(scene);
-      cosim::ReferenceRun ref = cosim::run_reference(plan, *rtol, *rtol * 1e-2);
+      // An adaptive scene has no grid before a run: sampled every `max` (and at the end).
+      std::vector<double> instants;
+      if (const auto& a = scene.time.adaptive) {
+        for (double t = scene.time.start; t < scene.time.end; t = scene.time.start + static_cast<double>(instants.size()) * a->max)
+          instants.push_back(t);
+        instants.push_back(scene.time.end);
+      }
+      cosim::ReferenceRun ref = instants.empty() ? cosim::run_reference(plan, *rtol, *rtol * 1e-2)
+                                                 : cosim::run_reference_at(plan, instants, *rtol, *rtol * 1e-2);
       const cosim::ReferenceAccuracy accuracy = cosim::estimate_reference_error(scene, ref);
       const auto& t = ref.log.data[0];
       auto series = [&](const config::SignalRef& r) -> std::span<const double> {

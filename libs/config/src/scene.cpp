@@ -90,6 +90,7 @@ AdaptiveStepSpec parse_adaptive_step(const ConfigNode& t, double duration) {
   // Each node keeps the instants of the run's steps (a double each): bounded here.
   if (duration / a.min > 1e8) t.child("min").fail("expected at most 1e8 steps of the smallest length (end - start) / min");
   a.initial = t.has("initial") ? t.positive_quantity("initial", dim::time) : a.min;
+  if (!(a.initial >= a.min && a.initial <= a.max)) t.child("initial").fail("expected a first step between min and max");
   if (auto scales = t.optional_child("scales")) {
     if (!scales->is_map()) scales->fail("expected a map {participant: {field: value}}, e.g. {follower: {drive_torque: 20 N m}}");
     for (const std::string& participant : scales->keys()) {

@@ -189,3 +189,32 @@ TEST(SceneValidation, RestartKeys) {
 
 }  // namespace
 }  // namespace mechsim::cosim
+
+namespace mechsim::cosim {
+namespace {
+
+// time.step: adaptive (docs/accuracy.md "Adaptive macro step").
+std::string adaptive(const std::string& keys) {
+  return cam_press_with("time: {start: 0 s, end: 2 s, step: 1 ms}", "time: {start: 0 s, end: 2 s, step: adaptive" + keys + "}");
+}
+
+TEST(SceneValidation, AdaptiveStep) {
+  EXPECT_EQ(refusal(adaptive(", tolerance: 1e-3, min: 1 us, max: 5 ms, scales: {follower: {drive_torque_rest: 20 N m}}"), nullptr), "");
+  expect_refused(adaptive(", tolerance: 2"), "time.tolerance", "(0, 1)");
+  expect_refused(adaptive(", min: 2 ms, max: 1 ms"), "time.min", "min <= max");
+  expect_refused(adaptive(", max: 3 s"), "time.max", "end - start");
+  expect_refused(adaptive(", min: 1 ns"), "time.min", "1e8 steps");
+  expect_refused(adaptive(", initial: 1 s, max: 1 ms"), "time.initial", "between min and max");
+  expect_refused(adaptive(", tolerance: 1e-3, stepp: 1"), "time", "unknown key 'stepp'");
+  expect_refused(adaptive(", scales: {press: {drive_torque_rest: 20 N m}}"), "time.scales.press", "participant of this scene");
+  expect_refused(adaptive(", scales: {follower: {torque: 20 N m}}"), "time.scales.follower.torque", "FollowerState");
+  expect_refused(adaptive(", scales: {follower: {drive_torque_rest: -1 N m}}"), "time.scales.follower.drive_torque_rest", "positive");
+  // A fixed period (real time) and checkpoints of a step index (restart) need a fixed step.
+  std::string rt = adaptive("");
+  rt.replace(rt.find("mode: lockstep"), std::string("mode: lockstep").size(), "mode: realtime");
+  expect_refused(rt, "mode", "adaptive");
+  expect_refused(adaptive("") + "\nfaults: {restart: on_failure}\n", "faults.restart", "adaptive");
+}
+
+}  // namespace
+}  // namespace mechsim::cosim
