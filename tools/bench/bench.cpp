@@ -63,6 +63,27 @@ std::string num(double v, const char* fmt = "%.3g") {
   return buf;
 }
 
+// A tolerance as "1e-3", "2.5e-4".
+std::string tol_text(double v) {
+  if (!std::isfinite(v)) return "-";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.2e", v);
+  std::string m(buf), e;
+  const auto pos = m.find('e');
+  if (pos != std::string::npos) {
+    e = m.substr(pos + 1);
+    m.resize(pos);
+  }
+  while (m.find('.') != std::string::npos && (m.back() == '0' || m.back() == '.')) m.pop_back();
+  std::string sign;
+  if (!e.empty() && (e[0] == '-' || e[0] == '+')) {
+    if (e[0] == '-') sign = "-";
+    e = e.substr(1);
+  }
+  while (e.size() > 1 && e[0] == '0') e = e.substr(1);
+  return e == "0" ? m : m + "e" + sign + e;
+}
+
 json finite_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
 // --- scheme variants ---------------------------------------------------------------
@@ -234,6 +255,64 @@ std::vector<double> parse_steps(const std::string& text) {
   return out;
 }
 
+std::vector<double> parse_tolerances(const std::string& text) {
+  std::vector<double> out;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    const auto b = item.find_first_not_of(" \t"), e = item.find_last_not_of(" \t");
+    if (b == std::string::npos) continue;
+    item = item.substr(b, e - b + 1);
+    if (item == "none") continue;
+    std::size_t used = 0;
+    double v = 0;
+    try {
+      v = std::stod(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != item.size() || !(v > 0) || !(v < 1))
+      throw std::invalid_argument("--tolerances: expected numbers in (0, 1) or 'none', got '" + item + "'");
+    out.push_back(v);
+  }
+  std::sort(out.begin(), out.end(), std::greater<>());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+double envelope_at(const std::vector<std::pair<double, double>>& points, double wall, int* lo, int* hi) {
+  std::vector<int> idx;
+  for (int i = 0; i < static_cast<int>(points.size()); ++i) {
+    const auto& [w, e] = points[i];
+    if (w > 0 && std::isfinite(w) && e > 0 && std::isfinite(e)) idx.push_back(i);
+  }
+  if (lo) *lo = -1;
+  if (hi) *hi = -1;
+  if (idx.empty() || !(wall > 0)) return kNaN;
+  std::sort(idx.begin(), idx.end(), [&](int a, int b) {
+    return points[a].first != points[b].first ? points[a].first < points[b].first : points[a].second < points[b].second;
+  });
+  if (wall < points[idx.front()].first || wall > points[idx.back()].first) return kNaN;
+  // The corners: each point with a smaller error than every faster one.
+  std::vector<int> corners;
+  for (int i : idx)
+    if (corners.empty() || points[i].second < points[corners.back()].second) corners.push_back(i);
+  std::size_t k = 0;
+  while (k + 1 < corners.size() && points[corners[k + 1]].first <= wall) ++k;
+  const int a = corners[k];
+  if (k + 1 == corners.size() || points[a].first == wall) {
+    if (lo) *lo = a;
+    if (hi) *hi = a;
+    return points[a].second;
+  }
+  const int b = corners[k + 1];
+  const double x0 = std::log(points[a].first), x1 = std::log(points[b].first);
+  const double y0 = std::log(points[a].second), y1 = std::log(points[b].second);
+  if (lo) *lo = a;
+  if (hi) *hi = b;
+  return std::exp(y0 + (y1 - y0) * (std::log(wall) - x0) / (x1 - x0));
+}
+
 namespace {
 
 // Equal as data (flow or block style, key order aside): scalars by their text.
@@ -264,7 +343,9 @@ struct RunSpec {
   double h = 0;
   std::string solver;
   double rtol = 0;
-  std::string sweep;  // "solver" or "tolerance"
+  std::string sweep;  // "solver", "tolerance" or "adaptive"
+  double tolerance = 0;  // > 0: an adaptive point (time.step: adaptive at this tolerance; h unused)
+  bool adaptive() const { return tolerance > 0; }
 };
 
 struct Reference {
@@ -289,6 +370,9 @@ struct RunResult {
   std::string worst_signal;
   std::string run_dir;
   bool completed = false;  // every node ran to the end (whatever the error)
+  // Adaptive points: the steps taken (from the node log) and the run's own reference.
+  double step_min_s = kNaN, step_max_s = kNaN;
+  json reference;
 };
 
 class Bench {
@@ -299,12 +383,16 @@ class Bench {
  private:
   std::vector<std::string> run_overrides(const RunSpec& r, bool with_solver) const;
   Reference& reference(int variant, double h);
+  void adaptive_reference(const RunSpec& r, const std::string& run_dir, Reference& ref);
   RunResult run_inproc_point(const RunSpec& r, const std::string& run_dir);
   void compare(const config::Scene& scene, const Reference& ref, const std::vector<std::string>& participants,
                const std::function<std::string(const std::string&)>& log_path, RunResult& res);
   json dds_check(const RunSpec& r, const RunResult& inproc);
   json row_json(const RunSpec& r, const RunResult& res) const;
   void plots(const std::vector<RunSpec>& specs, const std::vector<RunResult>& results, const json& orders);
+  std::string scheme_name(const RunSpec& r) const {
+    return r.adaptive() ? "adaptive " + variants_[r.variant].name : variants_[r.variant].name;
+  }
 
   BenchOptions opt_;
   std::ostream& out_;
@@ -317,14 +405,28 @@ class Bench {
   std::map<std::pair<std::string, double>, std::unique_ptr<Reference>> refs_;
   std::uint64_t run_counter_ = 0;
   std::optional<std::string> best_scheme_;  // of the best-vs-zero-order-hold comparison
+  // The adaptive points (RunSpec::tolerance > 0), loosest tolerance first per variant.
+  std::vector<RunSpec> adaptive_specs_;
+  std::vector<RunResult> adaptive_results_;
+  double adaptive_max_ = 0, adaptive_min_ = 0;  // time.max and time.min/initial of the adaptive runs
 };
 
 std::vector<std::string> Bench::run_overrides(const RunSpec& r, bool with_solver) const {
   std::vector<std::string> o = opt_.overrides;
   o.push_back("mode=lockstep");
-  o.push_back("time.step=" + time_text(r.h));
-  // A sampled block whose sample time is the macro step keeps sampling at each exchange.
-  for (const auto& p : sampled_) o.push_back("participants." + p + ".params.sample_time=" + time_text(r.h));
+  if (r.adaptive()) {
+    // Between the smallest H swept / 100 and the largest; sampled blocks keep the scene's
+    // sample time.
+    o.push_back("time.step=adaptive");
+    o.push_back("time.tolerance=" + num(r.tolerance, "%.9g"));
+    o.push_back("time.max=" + time_text(adaptive_max_));
+    o.push_back("time.min=" + time_text(adaptive_min_));
+    o.push_back("time.initial=" + time_text(adaptive_min_));
+  } else {
+    o.push_back("time.step=" + time_text(r.h));
+    // A sampled block whose sample time is the macro step keeps sampling at each exchange.
+    for (const auto& p : sampled_) o.push_back("participants." + p + ".params.sample_time=" + time_text(r.h));
+  }
   if (with_solver)
     for (const auto& p : participants_) {
       o.push_back("participants." + p + ".solver.method=" + r.solver);
@@ -356,6 +458,21 @@ Reference& Bench::reference(int variant, double h) {
     slot->error = e.what();
   }
   return *slot;
+}
+
+// The reference of an adaptive point: at the instants its run took (the node logs in run_dir),
+// never shared with another run.
+void Bench::adaptive_reference(const RunSpec& r, const std::string& run_dir, Reference& ref) {
+  try {
+    ref.scene = std::make_unique<config::Scene>(config::load_scene(variant_files_[r.variant], run_overrides(r, false)));
+    cosim::ScenePlan plan = cosim::ScenePlan::build(*ref.scene);
+    const std::vector<double> instants = cosim::run_instants(plan, run_dir);
+    ref.run = cosim::run_reference_at(plan, instants);
+    ref.accuracy = cosim::estimate_reference_error(*ref.scene, ref.run);
+    ref.accuracy_json = launch::reference_accuracy_json(*ref.scene, ref.run, ref.accuracy);
+  } catch (const std::exception& e) {
+    ref.error = e.what();
+  }
 }
 
 void Bench::compare(const config::Scene& scene, const Reference& ref, const std::vector<std::string>& participants,
@@ -437,7 +554,9 @@ void Bench::compare(const config::Scene& scene, const Reference& ref, const std:
 RunResult Bench::run_inproc_point(const RunSpec& r, const std::string& run_dir) {
   RunResult res;
   res.run_dir = run_dir;
-  Reference& ref = reference(r.variant, r.h);
+  // A fixed H: the reference at H (shared by the runs at H); adaptive: its own, after the run.
+  Reference adaptive_ref;
+  Reference& ref = r.adaptive() ? adaptive_ref : reference(r.variant, r.h);
   if (!ref.error.empty()) {
     res.status = "refused";
     res.reason = ref.error;
@@ -446,7 +565,8 @@ RunResult Bench::run_inproc_point(const RunSpec& r, const std::string& run_dir) 
   std::unique_ptr<config::Scene> scene;
   try {
     scene = std::make_unique<config::Scene>(config::load_scene(variant_files_[r.variant], run_overrides(r, true)));
-    // Validation (run_inproc builds its own), and the grid's step count (events land on it).
+    // Validation (run_inproc builds its own), and the grid's step count (events land on it;
+    // 0 for an adaptive step, counted from the log after the run).
     res.macro_steps = static_cast<long>(cosim::ScenePlan::build(*scene).grid()->steps());
   } catch (const std::exception& e) {
     res.status = "refused";
@@ -487,6 +607,21 @@ RunResult Bench::run_inproc_point(const RunSpec& r, const std::string& run_dir) 
   }
   res.solver = {{"steps", steps}, {"rhs_evals", rhs}, {"error_test_failures", etf}, {"nonlinear_failures", nlf},
                 {"roots_found", roots}};
+  if (r.adaptive()) {
+    // The macro steps it took: the rows of a node's log after the first.
+    try {
+      const cosim::OutputLog log = cosim::read_output_log(run_dir + "/" + participants_.front() + ".outputs.bin");
+      const auto& t = log.data.at(0);
+      res.macro_steps = t.empty() ? 0 : static_cast<long>(t.size()) - 1;
+      for (std::size_t k = 1; k < t.size(); ++k) {
+        const double h = t[k] - t[k - 1];
+        res.step_min_s = k == 1 ? h : std::min(res.step_min_s, h);
+        res.step_max_s = k == 1 ? h : std::max(res.step_max_s, h);
+      }
+    } catch (const std::exception&) {
+      res.macro_steps = 0;
+    }
+  }
   if (!ir.ok) {
     res.status = ir.diverged ? "diverged" : "failed";
     res.reason = ir.reason;
@@ -494,6 +629,16 @@ RunResult Bench::run_inproc_point(const RunSpec& r, const std::string& run_dir) 
   }
   res.status = "ok";
   res.completed = true;
+  if (r.adaptive()) {
+    adaptive_reference(r, run_dir, ref);
+    if (!ref.error.empty()) {
+      res.status = "refused";
+      res.reason = "reference: " + ref.error;
+      return res;
+    }
+    res.reference = {{"step_s", nullptr}, {"tolerance", r.tolerance}, {"instants", ref.run.log.data.empty() ? 0 : ref.run.log.data[0].size()},
+                     {"rtol", ref.run.rtol}, {"wall_time_s", ref.run.wall_time_s}, {"accuracy", ref.accuracy_json}};
+  }
   try {
     compare(*scene, ref, participants_, [&](const std::string& p) { return run_dir + "/" + p + ".outputs.bin"; }, res);
   } catch (const std::exception& e) {
@@ -590,11 +735,11 @@ json Bench::dds_check(const RunSpec& r, const RunResult& inproc) {
 
 json Bench::row_json(const RunSpec& r, const RunResult& res) const {
   const auto& v = variants_[r.variant];
-  return {{"scheme", v.name},
+  json row = {{"scheme", scheme_name(r)},
           {"family", v.family},
           {"zero_order_hold_jacobi", v.zero_order_hold_jacobi},
           {"shipped", v.shipped},
-          {"step_s", r.h},
+          {"step_s", r.adaptive() ? json(nullptr) : json(r.h)},
           {"solver", r.solver},
           {"rtol", r.rtol},
           {"atol", r.rtol * 1e-3},
@@ -614,6 +759,16 @@ json Bench::row_json(const RunSpec& r, const RunResult& res) const {
             {"rms_rel_bound", finite_or_null(res.rms_rel_bound)}}},
           {"signals", res.signals},
           {"report", res.report}};
+  if (r.adaptive()) {
+    row["variant"] = v.name;
+    row["tolerance"] = r.tolerance;
+    row["time_max_s"] = adaptive_max_;
+    row["time_min_s"] = adaptive_min_;
+    row["time_initial_s"] = adaptive_min_;
+    row["steps_taken_s"] = {{"min", finite_or_null(res.step_min_s)}, {"max", finite_or_null(res.step_max_s)}};
+    row["reference"] = res.reference;
+  }
+  return row;
 }
 
 void Bench::plots(const std::vector<RunSpec>& specs, const std::vector<RunResult>& results, const json& orders) {
@@ -659,8 +814,22 @@ void Bench::plots(const std::vector<RunSpec>& specs, const std::vector<RunResult
     }
     return p;
   };
+  // The adaptive curves (cvode_bdf at --rtol): points along a curve are tolerances, loosest
+  // first; RMS or max error of the worst compared signal.
+  auto adaptive_curves = [&](bool max_error) {
+    std::map<std::string, std::vector<std::pair<double, double>>> c;
+    for (std::size_t i = 0; i < adaptive_specs_.size(); ++i) {
+      const auto& res = adaptive_results_[i];
+      const double e = max_error ? res.max_rel : res.rms_rel;
+      if (res.status != "ok" || !std::isfinite(e)) continue;
+      c[scheme_name(adaptive_specs_[i])].push_back({res.wall_time_s, e});
+    }
+    return c;
+  };
+  const bool any_adaptive = !adaptive_curves(false).empty() || !adaptive_curves(true).empty();
   plot::Figure wp;
-  wp.title = scene_name_ + ": work-precision (in-process runs; points along a curve are macro steps H)";
+  wp.title = scene_name_ + (any_adaptive ? ": work-precision (in process; points along a curve: H, adaptive: tolerances)"
+                                          : ": work-precision (in-process runs; points along a curve are macro steps H)");
   wp.height_px_per_panel = 420;
   // One panel per node solver (a curve per scheme), then the tolerance sweep.
   const auto all = curves("solver", false);
@@ -674,7 +843,27 @@ void Bench::plots(const std::vector<RunSpec>& specs, const std::vector<RunResult
     for (const auto& [name, pts] : all)
       if (name.size() > suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0)
         sub[name.substr(0, name.size() - suffix.size())] = pts;
+    if (solver == "cvode_bdf")
+      for (const auto& [name, pts] : adaptive_curves(false)) sub[name] = pts;
     wp.panels.push_back(panel_of(sub, solver + " in every node (rtol " + num(opt_.rtol, "%.0e") + ")", "wall time [s]"));
+  }
+  // The max error (the 5x target of the adaptive step): fixed-H schemes and adaptive curves,
+  // cvode_bdf at --rtol.
+  if (any_adaptive) {
+    std::map<std::string, std::map<double, std::pair<double, double>>> fixed;  // scheme -> H -> (wall, max)
+    for (std::size_t i = 0; i < specs.size(); ++i) {
+      const auto& res = results[i];
+      if (specs[i].sweep != "solver" || specs[i].solver != "cvode_bdf" || specs[i].rtol != opt_.rtol) continue;
+      if (res.status != "ok" || !std::isfinite(res.max_rel)) continue;
+      fixed[variants_[specs[i].variant].name][specs[i].h] = {res.wall_time_s, res.max_rel};
+    }
+    std::map<std::string, std::vector<std::pair<double, double>>> sub;
+    for (const auto& [name, by_h] : fixed)
+      for (const auto& [h, p] : by_h) sub[name].push_back(p);
+    for (const auto& [name, pts] : adaptive_curves(true)) sub[name] = pts;
+    plot::Panel p = panel_of(sub, "max error: fixed H and adaptive (cvode_bdf, rtol " + num(opt_.rtol, "%.0e") + ")", "wall time [s]");
+    p.ylabel = "max error / reference range (worst compared signal)";
+    wp.panels.push_back(p);
   }
   // The tolerance panel keeps the baseline, the shipped scheme and the best one readable.
   auto tol = curves("tolerance", false);
@@ -876,6 +1065,68 @@ int Bench::run() {
     }
   }
 
+  // Adaptive points: the shipped scheme and the best fixed-H scheme at the scene's H (the
+  // swept H nearest it): the smallest max error of cvode_bdf at --rtol, an error below the
+  // reference's own counting as 0, the first variant on a tie; cvode_bdf at --rtol, with
+  // time.max the largest H swept and time.min = time.initial the smallest / 100.
+  json adaptive_choice = json::array();
+  const std::vector<double> tolerances =
+      opt_.tolerances ? *opt_.tolerances
+                      : (opt_.quick ? std::vector<double>{1e-2, 1e-3} : std::vector<double>{1e-2, 3e-3, 1e-3, 3e-4, 1e-4});
+  {
+    adaptive_max_ = grid.back();
+    adaptive_min_ = grid.front() / 100;
+    double h_own = grid.front();
+    for (double h : grid)
+      if (std::abs(std::log(h / h0_)) < std::abs(std::log(h_own / h0_))) h_own = h;
+    int best = -1;
+    double best_error = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < specs.size(); ++i) {
+      const auto& r = specs[i];
+      const auto& res = results[i];
+      if (r.sweep != "solver" || r.solver != "cvode_bdf" || r.rtol != opt_.rtol || r.h != h_own || res.status != "ok") continue;
+      const double e = res.max_below_reference ? 0.0 : res.max_rel;
+      if (std::isfinite(e) && e < best_error) {
+        best_error = e;
+        best = r.variant;
+      }
+    }
+    std::vector<int> chosen;
+    for (int v = 0; v < static_cast<int>(variants_.size()); ++v)
+      if (variants_[v].shipped) {
+        chosen.push_back(v);
+        adaptive_choice.push_back({{"variant", variants_[v].name}, {"why", "shipped"}});
+      }
+    if (best >= 0 && std::find(chosen.begin(), chosen.end(), best) == chosen.end()) {
+      chosen.push_back(best);
+      adaptive_choice.push_back({{"variant", variants_[best].name},
+                                 {"why", "best fixed-H max error at H " + time_text(h_own) + " (cvode_bdf, rtol " + num(opt_.rtol, "%.0e") + ")"},
+                                 {"max_rel_at_h", finite_or_null(best_error)}});
+    } else if (best >= 0) {
+      adaptive_choice.back()["why"] = "shipped; also the best fixed-H max error at H " + time_text(h_own);
+    }
+    if (tolerances.empty()) adaptive_choice = json::array();  // --tolerances none
+    for (int v : chosen)
+      for (double tol : tolerances) adaptive_specs_.push_back({v, 0.0, "cvode_bdf", opt_.rtol, "adaptive", tol});
+  }
+  adaptive_results_.resize(adaptive_specs_.size());
+  for (std::size_t i = 0; i < adaptive_specs_.size(); ++i) {
+    const RunSpec& r = adaptive_specs_[i];
+    const std::string dir = opt_.work_dir + "/adaptive-" + std::to_string(i);
+    adaptive_results_[i] = run_inproc_point(r, dir);
+    const RunResult& res = adaptive_results_[i];
+    std::fprintf(stderr, "[adaptive %zu/%zu %5.0f s] %-22s tol %-6s %-11s rtol %-6s %-8s steps %-7ld max %-10s rms %-10s wall %s s%s%s\n",
+                 i + 1, adaptive_specs_.size(), seconds_since(t_start), variants_[r.variant].name.c_str(),
+                 tol_text(r.tolerance).c_str(), r.solver.c_str(), num(r.rtol, "%.0e").c_str(), res.status.c_str(), res.macro_steps,
+                 res.max_below_reference ? "<ref" : num(res.max_rel).c_str(),
+                 res.rms_below_reference ? "<ref" : num(res.rms_rel).c_str(), num(res.wall_time_s).c_str(),
+                 res.reason.empty() ? "" : ": ", res.reason.substr(0, 200).c_str());
+    if (!opt_.keep_work_dir) {
+      std::error_code ec;
+      fs::remove_all(dir, ec);
+    }
+  }
+
   // Observed order per scheme: cvode_bdf at the tightest tolerance swept, over the points
   // that are neither saturated by the tolerance/reference floor nor outside the asymptotic
   // range (docs/accuracy.md).
@@ -959,6 +1210,124 @@ int Bench::run() {
     }
   }
 
+  // Adaptive against fixed H at equal wall time: for each adaptive point, the lower envelope
+  // of the fixed-H rows (cvode_bdf at --rtol, every scheme and H, status ok) in (wall time,
+  // error), interpolated log-log at the point's wall time, over the point's error.
+  json adaptive_vs_fixed = {
+      {"definition",
+       "per adaptive point: factor = fixed_error / adaptive_error, fixed_error the lower envelope of (wall_time_s, error) "
+       "over the fixed-H rows with solver cvode_bdf at the bench's rtol and status ok (every scheme and H), interpolated "
+       "log-log between the envelope's corners at the adaptive run's wall time; no factor outside the fixed rows' wall "
+       "time range ('outside'), nor where an error is below reference accuracy (the adaptive point's, or a fixed row's "
+       "at no more wall time: such rows are left out of the envelope); best_factor over the points, target_5x_met = "
+       "best_factor >= 5. 'max' is the max_rel error of the worst compared signal, 'rms' the rms_rel one"},
+      {"solver", "cvode_bdf"},
+      {"rtol", opt_.rtol},
+      {"time_max_s", adaptive_max_},
+      {"time_min_s", adaptive_min_},
+      {"time_initial_s", adaptive_min_},
+      {"variants", adaptive_choice},
+      {"curves", json::array()}};
+  if (tolerances.empty()) adaptive_vs_fixed["note"] = "no adaptive points (--tolerances none)";
+  {
+    auto fixed_row = [&](std::size_t i) {
+      return specs[i].solver == "cvode_bdf" && specs[i].rtol == opt_.rtol && results[i].status == "ok";
+    };
+    auto figure = [&](int variant, bool use_max) {
+      std::vector<std::pair<double, double>> pts;
+      std::vector<std::size_t> src;
+      std::vector<double> below_walls;
+      double wall_lo = kNaN, wall_hi = kNaN;
+      for (std::size_t i = 0; i < specs.size(); ++i) {
+        if (!fixed_row(i)) continue;
+        const auto& res = results[i];
+        if (use_max ? res.max_below_reference : res.rms_below_reference) {
+          below_walls.push_back(res.wall_time_s);
+          continue;
+        }
+        const double e = use_max ? res.max_rel : res.rms_rel;
+        if (!(e > 0) || !std::isfinite(e) || !(res.wall_time_s > 0)) continue;
+        pts.push_back({res.wall_time_s, e});
+        src.push_back(i);
+        wall_lo = std::isnan(wall_lo) ? res.wall_time_s : std::min(wall_lo, res.wall_time_s);
+        wall_hi = std::isnan(wall_hi) ? res.wall_time_s : std::max(wall_hi, res.wall_time_s);
+      }
+      json f{{"points", json::array()},
+             {"fixed_rows", pts.size()},
+             {"fixed_rows_below_reference_accuracy", below_walls.size()},
+             {"fixed_wall_time_range_s", {finite_or_null(wall_lo), finite_or_null(wall_hi)}}};
+      double best = kNaN;
+      json best_at;
+      for (std::size_t j = 0; j < adaptive_specs_.size(); ++j) {
+        const auto& r = adaptive_specs_[j];
+        if (r.variant != variant) continue;
+        const auto& res = adaptive_results_[j];
+        const bool below = use_max ? res.max_below_reference : res.rms_below_reference;
+        const double e = use_max ? res.max_rel : res.rms_rel;
+        json p{{"tolerance", r.tolerance},
+               {"status", res.status},
+               {"macro_steps", res.macro_steps},
+               {"wall_time_s", finite_or_null(res.wall_time_s)},
+               {"adaptive_error", finite_or_null(e)},
+               {"adaptive_below_reference_accuracy", below},
+               {"fixed_error", nullptr},
+               {"factor", nullptr}};
+        if (res.status != "ok") {
+          p["note"] = "adaptive run " + res.status;
+        } else if (below) {
+          p["note"] = "adaptive error below reference accuracy: left out of the factor";
+        } else if (!(e > 0) || !std::isfinite(e)) {
+          p["note"] = "no finite adaptive error";
+        } else {
+          int lo = -1, hi = -1;
+          const double fe = envelope_at(pts, res.wall_time_s, &lo, &hi);
+          if (!std::isfinite(fe)) {
+            p["fixed_error"] = "outside";
+            p["note"] = "adaptive wall time outside the fixed-H rows' wall time range";
+          } else {
+            p["fixed_error"] = fe;
+            json between = json::array();
+            for (int k : {lo, hi}) {
+              if (k < 0 || (k == hi && hi == lo)) continue;
+              const std::size_t i = src[k];
+              between.push_back({{"scheme", variants_[specs[i].variant].name}, {"step_s", specs[i].h},
+                                 {"wall_time_s", results[i].wall_time_s}, {"error", pts[k].second}});
+            }
+            p["fixed_envelope_corners"] = between;
+            const bool fixed_below = std::any_of(below_walls.begin(), below_walls.end(),
+                                                 [&](double w) { return w <= res.wall_time_s; });
+            if (fixed_below) {
+              p["note"] = "a fixed-H row at no more wall time is below reference accuracy: left out of the factor";
+            } else {
+              const double factor = fe / e;
+              p["factor"] = factor;
+              if (!(factor <= best)) {
+                best = factor;
+                best_at = r.tolerance;
+              }
+            }
+          }
+        }
+        f["points"].push_back(p);
+      }
+      f["best_factor"] = finite_or_null(best);
+      f["best_at_tolerance"] = best_at;
+      f["target_5x_met"] = std::isfinite(best) ? json(best >= 5) : json(nullptr);
+      return f;
+    };
+    for (const auto& c : adaptive_choice) {
+      int v = 0;
+      while (variants_[v].name != c["variant"]) ++v;
+      json curve = figure(v, true);
+      curve["scheme"] = "adaptive " + variants_[v].name;
+      curve["variant"] = variants_[v].name;
+      curve["error"] = "max_rel";
+      curve["rms"] = figure(v, false);
+      curve["rms"]["error"] = "rms_rel";
+      adaptive_vs_fixed["curves"].push_back(curve);
+    }
+  }
+
   std::fflush(stdout);
   if (saved_stdout >= 0) {
     dup2(saved_stdout, 1);
@@ -981,6 +1350,16 @@ int Bench::run() {
                   res.solver.is_object() ? std::to_string(res.solver.value("steps", 0L)).c_str() : "-");
     out_ << line;
   }
+  for (std::size_t i = 0; i < adaptive_specs_.size(); ++i) {
+    const auto& r = adaptive_specs_[i];
+    const auto& res = adaptive_results_[i];
+    std::snprintf(line, sizeof line, "%-22s %-9s %-11s %-6s %-9s %-10s %-10s %-9s %-9s\n", scheme_name(r).c_str(),
+                  ("tol " + tol_text(r.tolerance)).c_str(), r.solver.c_str(), num(r.rtol, "%.0e").c_str(), res.status.c_str(),
+                  res.rms_below_reference ? "<ref" : num(res.rms_rel).c_str(),
+                  res.max_below_reference ? "<ref" : num(res.max_rel).c_str(), num(res.wall_time_s, "%.3f").c_str(),
+                  res.solver.is_object() ? std::to_string(res.solver.value("steps", 0L)).c_str() : "-");
+    out_ << line;
+  }
   out_ << "observed order (cvode_bdf, rtol " << num(tight, "%.0e") << "):";
   for (const auto& o : orders)
     out_ << "  " << o["scheme"].get<std::string>() << " " << (o["order"].is_number() ? num(o["order"].get<double>(), "%.2f") : "-");
@@ -996,6 +1375,33 @@ int Bench::run() {
                                          time_text(ten_x["at"]["step_s"].get<double>()) + ")"
                                    : "")
        << "\n";
+  for (const auto& c : adaptive_vs_fixed["curves"]) {
+    auto factor_text = [](const json& f, const char* what) {
+      std::string t = std::string(what) + " error ";
+      if (f["best_factor"].is_number())
+        return t + "x" + num(f["best_factor"].get<double>(), "%.3g") + " at tol " + tol_text(f["best_at_tolerance"].get<double>()) +
+               " (target 5x: " + (f["target_5x_met"].get<bool>() ? "met" : "not met") + ")";
+      return t + "no factor (target 5x: not met)";
+    };
+    out_ << c["scheme"].get<std::string>() << " vs best fixed H at equal wall time: " << factor_text(c, "max") << "; "
+         << factor_text(c["rms"], "rms") << "\n";
+    for (std::size_t k = 0; k < c["points"].size(); ++k) {
+      const json& p = c["points"][k];
+      const json& q = c["rms"]["points"][k];
+      auto one = [](const json& x) {
+        if (x["adaptive_below_reference_accuracy"].get<bool>()) return std::string("<ref");
+        std::string t = x["adaptive_error"].is_number() ? num(x["adaptive_error"].get<double>()) : "-";
+        if (x["fixed_error"].is_number()) t += " (fixed " + num(x["fixed_error"].get<double>()) + ")";
+        else if (x["fixed_error"].is_string()) t += " (fixed: outside)";
+        if (x["factor"].is_number()) t += " x" + num(x["factor"].get<double>(), "%.3g");
+        return t;
+      };
+      out_ << "  tol " << tol_text(p["tolerance"].get<double>()) << ": " << p["status"].get<std::string>() << ", "
+           << p["macro_steps"].get<long>() << " macro steps, wall "
+           << (p["wall_time_s"].is_number() ? num(p["wall_time_s"].get<double>()) : "-") << " s, max " << one(p) << ", rms "
+           << one(q) << "\n";
+    }
+  }
   out_ << "bench duration " << num(duration, "%.1f") << " s\n";
 
   plots(specs, results, orders);
@@ -1005,14 +1411,22 @@ int Bench::run() {
     for (const auto& [key, ref] : refs_)
       refs.push_back({{"coupling_element", key.first}, {"step_s", key.second}, {"error", ref->error},
                       {"rtol", ref->run.rtol}, {"wall_time_s", ref->run.wall_time_s}, {"accuracy", ref->accuracy_json}});
+    for (std::size_t i = 0; i < adaptive_specs_.size(); ++i)
+      if (adaptive_results_[i].reference.is_object()) {
+        json a = adaptive_results_[i].reference;
+        a["scheme"] = scheme_name(adaptive_specs_[i]);
+        refs.push_back(a);
+      }
     json rows = json::array();
     for (std::size_t i = 0; i < specs.size(); ++i) rows.push_back(row_json(specs[i], results[i]));
+    for (std::size_t i = 0; i < adaptive_specs_.size(); ++i) rows.push_back(row_json(adaptive_specs_[i], adaptive_results_[i]));
     json doc{{"schema_version", tools::schema_version},
              {"provenance", tools::provenance(opt_.scene_path)},
              {"kind", "bench"},
              {"scene", scene_name_},
              {"overrides", opt_.overrides},
              {"options", {{"quick", opt_.quick}, {"steps_s", grid}, {"solvers", solvers}, {"rtol", opt_.rtol}, {"rtols", rtols},
+                          {"tolerances", tolerances},
                           {"schemes", [&] { json a = json::array(); for (auto& v : variants_) a.push_back(v.name); return a; }()}}},
              {"schemes_refused", refused_variants},
              {"references", refs},
@@ -1020,6 +1434,7 @@ int Bench::run() {
              {"orders", orders},
              {"dds_checks", dds},
              {"best_vs_zero_order_hold", ten_x},
+             {"adaptive_vs_fixed", adaptive_vs_fixed},
              {"duration_s", duration}};
     if (!opt_.plots_dir.empty())
       doc["files"] = {{"work_precision_png", opt_.plots_dir + "/" + scene_name_ + "_work_precision.png"},
