@@ -78,7 +78,8 @@ bool NodeStepper::prediction_due() const {
 }
 
 bool NodeStepper::proposal_due() const {
-  if (!agreement_ || !initialised_ || finished() || proposed_step_ == k_) return false;
+  if (!agreement_ || !initialised_ || finished() || proposed_step_ == k_ || !grid_->knows_end_of(k_)) return false;
+  if (grid_->at_end(k_ + 1)) return false;  // step k is the last: nothing after it to propose
   // The estimate compares what a Jacobi edge reconstructed at t_k with the partner's step-k
   // sample; a Gauss-Seidel edge's step-k sample is here already (the step to t_k needed it).
   for (std::size_t e = 0; e < channels_.size(); ++e)
@@ -92,7 +93,9 @@ StepProposal NodeStepper::propose() {
   for (std::size_t e = 0; e < channels_.size(); ++e)
     if (channels_[e].order() == config::EdgeOrder::jacobi)
       estimate_->received(e, k_, channels_[e].held_samples().at(k_));
-  const double t = time();
+  // Made at step k, for the step after the next, k+1 -> k+2 (t_k+1 is agreed already): the
+  // proposals travel while the nodes take step k -> k+1, so no node waits for them.
+  const double t_next = grid_->time(k_ + 1);
   StepProposal p;
   if (channels_.empty()) {
     p = propose_step(spec, 0.0, std::nullopt);  // no inputs: no coupling error of its own
@@ -100,16 +103,16 @@ StepProposal NodeStepper::propose() {
   } else {
     // After a discontinuity (or a law joint) the controller starts again from its initial
     // step, like an integrator after an event: the step before says nothing of what follows.
-    const bool restart = k_ == 0 || grid_->is_event(k_);
-    p = propose_step(spec, restart ? 0.0 : grid_->step_length(k_ - 1), estimate_->ratio_at(k_, spec.tolerance));
+    const bool restart = grid_->is_event(k_ + 1);
+    p = propose_step(spec, restart ? 0.0 : grid_->step_length(k_), estimate_->ratio_at(k_, spec.tolerance));
   }
   // The participants' scheduled discontinuities: every node knows them (the plan), every
   // node's proposal lands on the next one.
-  const double event = grid_->next_scheduled_event(t);
+  const double event = grid_->next_scheduled_event(t_next);
   p.event_time = event;
   p.event = std::isfinite(event);
   // A replayed participant steps where the recorded run stepped (it has no opinion of its own).
-  if (const double recorded = node_.block->next_instant_after(t); std::isfinite(recorded)) {
+  if (const double recorded = node_.block->next_instant_after(t_next); std::isfinite(recorded)) {
     p.step_length = spec.max;
     p.event_time = recorded;
     p.event = recorded == event;
@@ -121,7 +124,7 @@ StepProposal NodeStepper::propose() {
 
 void NodeStepper::add_proposal(std::size_t participant, std::uint64_t step, const StepProposal& proposal) {
   if (!agreement_) throw std::logic_error("step proposal in a run with a fixed macro step");
-  if (initialised_ && step < k_) return;  // agreed and taken
+  if (step + 2 <= grid_->steps()) return;  // agreed already: it set t_step+2
   if (!agreement_->add(participant, step, proposal))
     throw std::runtime_error("two different step proposals of participant " + std::to_string(participant) + " for step " +
                              std::to_string(step) + ": a participant that does not belong to this run writes into it");
@@ -129,9 +132,16 @@ void NodeStepper::add_proposal(std::size_t participant, std::uint64_t step, cons
 }
 
 void NodeStepper::agree_if_complete() {
-  if (!initialised_ || !agreement_->complete(k_)) return;
-  const AgreedStep a = agreement_->agreed(k_, time());
-  grid_->extend(k_, a.t_next, a.event);
+  // The proposals made at step j set t_j+2. (Another node of this process may have extended
+  // a shared grid already: extend() then checks that it agreed the same.)
+  if (grid_->steps() > 0) agreement_->discard_before(grid_->steps() - 1);
+  for (;;) {
+    const std::uint64_t n = grid_->steps();  // t_n is the last instant known
+    if (n == 0 || grid_->at_end(n) || !agreement_->complete(n - 1)) break;
+    const AgreedStep a = agreement_->agreed(n - 1, grid_->time(n));
+    grid_->extend(n, a.t_next, a.event);
+    agreement_->discard_before(n);
+  }
 }
 
 void NodeStepper::predict(std::vector<double>& prediction_fields) {
@@ -192,7 +202,6 @@ void NodeStepper::initialise(std::vector<double>& topic_values) {
   publishable(topic_values);
   k_ = 0;
   initialised_ = true;
-  if (agreement_) agree_if_complete();
 }
 
 void NodeStepper::step(std::vector<double>& topic_values) {
@@ -241,10 +250,6 @@ void NodeStepper::step(std::vector<double>& topic_values) {
   publishable(topic_values);
   k_ = k + 1;
   for (auto& c : channels_) c.discard_before(k_);
-  if (agreement_) {
-    agreement_->discard_before(k_);
-    agree_if_complete();  // the partners' proposals of the new step may be here already
-  }
 }
 
 std::vector<solve::EventRecord> NodeStepper::take_events() {

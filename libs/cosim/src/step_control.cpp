@@ -139,25 +139,29 @@ bool StepAgreement::complete(std::uint64_t k) const {
   return it != by_step_.end() && it->second.size() >= participants_;
 }
 
-AgreedStep StepAgreement::agreed(std::uint64_t k, double t_k) const {
+AgreedStep end_of_step(double t_k, double h, double limit, bool limit_is_event, const config::AdaptiveStepSpec& spec,
+                       double end) {
+  AgreedStep out{t_k + h, false};
+  // An instant less than the smallest step beyond the controller's choice is landed on (the
+  // step stretches by less than `min`) rather than left for a sliver of a step.
+  if (limit > t_k && limit < out.t_next + spec.min) out = {limit, limit_is_event};
+  // Likewise the end: no sliver before it.
+  if (out.t_next > end - spec.min) out = {end, false};
+  return out;
+}
+
+AgreedStep StepAgreement::agreed(std::uint64_t k, double t) const {
   const auto& proposals = by_step_.at(k);
   double h = std::numeric_limits<double>::infinity();
   double limit = std::numeric_limits<double>::infinity();
   for (const auto& [participant, p] : proposals) {
     h = std::min(h, p.step_length);
-    if (p.event_time > t_k) limit = std::min(limit, p.event_time);
+    if (p.event_time > t) limit = std::min(limit, p.event_time);
   }
-  AgreedStep out{t_k + h, false};
-  // An instant less than the smallest step beyond the controller's choice is landed on (the
-  // step stretches by less than `min`) rather than left for a sliver of a step; it is an
-  // event when any proposal calls it one.
-  if (limit < out.t_next + spec_.min) {
-    out = {limit, false};
-    for (const auto& [participant, p] : proposals) out.event = out.event || (p.event && p.event_time == limit);
-  }
-  // Likewise the end: no sliver before it.
-  if (out.t_next > end_ - spec_.min) out = {end_, false};
-  return out;
+  // The limit is an event when any proposal calls it one.
+  bool event = false;
+  for (const auto& [participant, p] : proposals) event = event || (p.event && p.event_time == limit);
+  return end_of_step(t, h, limit, event, spec_, end_);
 }
 
 void StepAgreement::discard_before(std::uint64_t k) {

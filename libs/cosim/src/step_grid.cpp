@@ -1,5 +1,7 @@
 #include "mechsim/cosim/step_grid.h"
 
+#include "mechsim/cosim/step_control.h"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -27,6 +29,11 @@ StepGrid StepGrid::adaptive(const config::TimeSpec& time, std::vector<double> ev
     if (!grid.scheduled_.empty() && e - grid.scheduled_.back() < grid.adaptive_spec_.min) grid.scheduled_.back() = e;
     else grid.scheduled_.push_back(e);
   }
+  // The first step: `initial`, landed like every other (the nodes' proposals set the later ones).
+  const double first_event = grid.next_scheduled_event(time.start);
+  const AgreedStep first = end_of_step(time.start, grid.adaptive_spec_.initial, first_event, std::isfinite(first_event),
+                                       grid.adaptive_spec_, time.end);
+  grid.extend(0, first.t_next, first.event);
   return grid;
 }
 

@@ -139,26 +139,33 @@ TEST(AdaptiveGrid, GrowsByAgreedInstantsAndRefusesAnotherEnd) {
   config::TimeSpec time;
   time.start = 0.0;
   time.end = 1.0;
-  time.adaptive = spec();
+  time.adaptive = spec(1e-3, 1e-6, 0.5, 0.1);
   time.step = time.adaptive->max;
   const StepGrid g = StepGrid::adaptive(time, {0.25, 0.75, 2.0});
   EXPECT_TRUE(g.is_adaptive());
-  EXPECT_EQ(g.steps(), 0u);
-  EXPECT_FALSE(g.knows_end_of(0));
-  g.extend(0, 0.1, false);
-  g.extend(0, 0.1, false);  // a second node of the same process agrees the same
-  EXPECT_THROW(g.extend(0, 0.2, false), std::logic_error);
-  EXPECT_THROW(g.extend(2, 0.3, false), std::logic_error);
-  g.extend(1, 0.25, true);
-  EXPECT_EQ(g.steps(), 2u);
-  EXPECT_TRUE(g.is_event(2));
-  EXPECT_FALSE(g.is_event(1));
-  EXPECT_EQ(g.step_at(0.25), 2u);
+  // The first step is `initial`; the nodes' proposals set the later ones.
+  EXPECT_EQ(g.steps(), 1u);
+  EXPECT_EQ(g.time(1), 0.1);
+  EXPECT_TRUE(g.knows_end_of(0));
+  EXPECT_FALSE(g.knows_end_of(1));
+  g.extend(1, 0.2, false);
+  g.extend(1, 0.2, false);  // a second node of the same process agrees the same
+  EXPECT_THROW(g.extend(1, 0.3, false), std::logic_error);
+  EXPECT_THROW(g.extend(3, 0.3, false), std::logic_error);
+  g.extend(2, 0.25, true);
+  EXPECT_EQ(g.steps(), 3u);
+  EXPECT_TRUE(g.is_event(3));
+  EXPECT_FALSE(g.is_event(2));
+  EXPECT_EQ(g.step_at(0.25), 3u);
   EXPECT_EQ(g.next_scheduled_event(0.25), 0.75);
   EXPECT_EQ(g.next_scheduled_event(0.75), HUGE_VAL) << "2.0 is past the end";
-  EXPECT_FALSE(g.at_end(2));
-  g.extend(2, 1.0, false);
-  EXPECT_TRUE(g.at_end(3));
+  EXPECT_FALSE(g.at_end(3));
+  g.extend(3, 1.0, false);
+  EXPECT_TRUE(g.at_end(4));
+  // A first step that would pass an event ends on it.
+  time.adaptive->initial = 0.3;
+  EXPECT_EQ(StepGrid::adaptive(time, {0.25}).time(1), 0.25);
+  EXPECT_TRUE(StepGrid::adaptive(time, {0.25}).is_event(1));
 }
 
 // A whole adaptive run stepped by hand; returns its plan's grid instants.

@@ -12,9 +12,10 @@
 //    No step is redone (that would need every node to roll back): the controller is kept
 //    conservative instead (the 0.8 and the 1.5), and a step whose estimate exceeds the
 //    tolerance only makes the next one shorter.
-//  - StepAgreement: every node's proposal for step k -> k+1; once all are there, t_k+1 is
-//    t_k plus the smallest proposed length, or the earliest discontinuity a proposal
-//    announces when that comes first, or the end. Every node computes the same function of
+//  - StepAgreement: every node's proposal made at step k; once all are there, t_k+2 is
+//    t_k+1 plus the smallest proposed length, or the earliest discontinuity a proposal
+//    announces when that comes first, or the end. One step ahead, so that the proposals
+//    travel while the nodes step and nobody waits for them (the estimate acts a step later). Every node computes the same function of
 //    the same doubles, so all agree bit for bit with no round trip through the launcher.
 #pragma once
 
@@ -99,7 +100,13 @@ class CouplingErrorEstimate {
 StepProposal propose_step(const config::AdaptiveStepSpec& spec, double last_h,
                           const std::optional<CouplingErrorEstimate::Result>& estimate);
 
-// The participants' proposals, by step.
+// The end of a step from t_k: t_k + h, or `limit` when it comes first or less than `min`
+// after (then an event when `limit_is_event`), or the end when less than `min` remains.
+AgreedStep end_of_step(double t_k, double h, double limit, bool limit_is_event, const config::AdaptiveStepSpec& spec,
+                       double end);
+
+// The participants' proposals, by step. The proposals made at step k set t_k+2 (they travel
+// while the nodes take step k -> k+1); t_1 is t_0 + `initial` (StepGrid::adaptive).
 class StepAgreement {
  public:
   StepAgreement(std::size_t participants, const config::AdaptiveStepSpec& spec, double end)
@@ -108,8 +115,8 @@ class StepAgreement {
   // or a bug: the caller refuses it). The caller leaves out proposals of steps it has passed.
   bool add(std::size_t participant, std::uint64_t k, const StepProposal& p);
   bool complete(std::uint64_t k) const;
-  // Requires complete(k): the end of step k -> k+1 starting at t_k.
-  AgreedStep agreed(std::uint64_t k, double t_k) const;
+  // Requires complete(k): the end of the step that starts at `t` (t_k+1).
+  AgreedStep agreed(std::uint64_t k, double t) const;
   // Forgets the proposals of steps before k.
   void discard_before(std::uint64_t k);
 
