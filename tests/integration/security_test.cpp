@@ -117,6 +117,33 @@ TEST_P(SecuredRun, NodeOutputsAreByteIdenticalToAnUnsecuredRun) {
 INSTANTIATE_TEST_SUITE_P(Vendors, SecuredRun, ::testing::Values("cyclone", "fastdds"),
                          [](const auto& info) { return info.param; });
 
+// An adaptive macro step: the permissions of `security init` for such a scene let each node
+// publish its step proposals and read everybody else's (<node>/step), and the secured run
+// gives the bytes of the plain one.
+TEST_F(Security, AnAdaptiveRunIsSecuredWithItsStepTopics) {
+  if (!compiled_in("cyclone")) GTEST_SKIP() << "cyclone is not in this build";
+  const std::vector<std::string> adaptive{"--end", "20 ms", "--set", "time.step=adaptive", "--set", "time.max=25 us",
+                                          "--set", "time.min=0.1 us", "--set", "time.tolerance=1e-3"};
+  const std::string dir = (folders_ / "adaptive").string();
+  std::vector<std::string> init{kMechsim, "security", "init", dir, kScene};
+  init.insert(init.end(), adaptive.begin() + 2, adaptive.end());  // the time keys (the end is no matter)
+  const CommandResult made = run(init, log("adaptive_init"), 60);
+  ASSERT_EQ(made.exit_code, 0) << made.output;
+  EXPECT_NE(slurp(dir + "/slide/permissions.xml").find("<topic>servo/step</topic>"), std::string::npos)
+      << "the slide may not read the amplifier's step proposals";
+  const CommandResult plain = run(run_args("plain", "cyclone", false, adaptive), log("plain"));
+  ASSERT_EQ(plain.exit_code, 0) << plain.output;
+  std::vector<std::string> secured_args = adaptive;
+  secured_args.insert(secured_args.end(), {"--set", "dds.security=" + dir});
+  const CommandResult secured = run(launch_args(kScene, "secured", [&] {
+    std::vector<std::string> a{"--dds", "cyclone"};
+    a.insert(a.end(), secured_args.begin(), secured_args.end());
+    return a;
+  }()), log("secured"));
+  ASSERT_EQ(secured.exit_code, 0) << secured.output;
+  expect_identical_outputs("plain", "secured");
+}
+
 // ---------------------------------------------------------------------------------------
 // Outsiders.
 

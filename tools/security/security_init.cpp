@@ -14,6 +14,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "mechsim/cosim/step_topic.h"
 #include "mechsim/config/config_node.h"
 #include "mechsim/transport/messages.h"
 #include "mechsim/transport/topic_types.h"
@@ -123,6 +124,12 @@ std::vector<IdentityGrant> grants_for_plan(const cosim::ScenePlan& plan) {
       for (const std::string& t : {node.cut->topic, transport::redundant_topic(node.cut->topic)}) add_unique(g.publish, t);
       for (const std::string& t : {node.cut->partner_topic, transport::redundant_topic(node.cut->partner_topic)})
         add_unique(g.subscribe, t);
+    }
+    // An adaptive macro step: its own step proposals out, every other participant's in.
+    if (plan.grid()->is_adaptive()) {
+      add_unique(g.publish, cosim::step_topic(node.name()));
+      for (const auto& other : plan.nodes())
+        if (other.name() != node.name()) add_unique(g.subscribe, cosim::step_topic(other.name()));
     }
     add_unique(g.subscribe, transport::kControlTopic);
     grants.push_back(std::move(g));
