@@ -233,14 +233,21 @@ double fit_order(const std::vector<double>& h, const std::vector<double>& error)
   return d > 0 ? (n * sxy - sx * sy) / d : kNaN;
 }
 
-std::vector<double> parse_steps(const std::string& text) {
-  std::vector<double> out;
+// The entries of a comma-separated list, trimmed, empty ones left out.
+static std::vector<std::string> list_items(const std::string& text) {
+  std::vector<std::string> items;
   std::stringstream ss(text);
   std::string item;
   while (std::getline(ss, item, ',')) {
     const auto b = item.find_first_not_of(" \t"), e = item.find_last_not_of(" \t");
-    if (b == std::string::npos) continue;
-    item = item.substr(b, e - b + 1);
+    if (b != std::string::npos) items.push_back(item.substr(b, e - b + 1));
+  }
+  return items;
+}
+
+std::vector<double> parse_steps(const std::string& text) {
+  std::vector<double> out;
+  for (const std::string& item : list_items(text)) {
     double v = 0;
     try {
       v = config::parse_quantity_as(item, config::dim::time);
@@ -257,12 +264,7 @@ std::vector<double> parse_steps(const std::string& text) {
 
 std::vector<double> parse_tolerances(const std::string& text) {
   std::vector<double> out;
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    const auto b = item.find_first_not_of(" \t"), e = item.find_last_not_of(" \t");
-    if (b == std::string::npos) continue;
-    item = item.substr(b, e - b + 1);
+  for (const std::string& item : list_items(text)) {
     if (item == "none") continue;
     std::size_t used = 0;
     double v = 0;
@@ -409,6 +411,9 @@ class Bench {
   std::vector<RunSpec> adaptive_specs_;
   std::vector<RunResult> adaptive_results_;
   double adaptive_max_ = 0, adaptive_min_ = 0;  // time.max and time.min/initial of the adaptive runs
+  // A scene with an adaptive step of its own: its settings (all but the tolerance, which is
+  // swept) for the adaptive points; the fixed points sweep H around a tenth of its max.
+  std::optional<config::AdaptiveStepSpec> scene_adaptive_;
 };
 
 std::vector<std::string> Bench::run_overrides(const RunSpec& r, bool with_solver) const {
@@ -419,9 +424,16 @@ std::vector<std::string> Bench::run_overrides(const RunSpec& r, bool with_solver
     // sample time.
     o.push_back("time.step=adaptive");
     o.push_back("time.tolerance=" + num(r.tolerance, "%.9g"));
-    o.push_back("time.max=" + time_text(adaptive_max_));
-    o.push_back("time.min=" + time_text(adaptive_min_));
-    o.push_back("time.initial=" + time_text(adaptive_min_));
+    if (scene_adaptive_) {
+      o.push_back("time.max=" + num(scene_adaptive_->max, "%.17g"));
+      o.push_back("time.min=" + num(scene_adaptive_->min, "%.17g"));
+      o.push_back("time.initial=" + num(scene_adaptive_->initial, "%.17g"));
+      for (const auto& [field, scale] : scene_adaptive_->scales) o.push_back("time.scales." + field + "=" + num(scale, "%.17g"));
+    } else {
+      o.push_back("time.max=" + time_text(adaptive_max_));
+      o.push_back("time.min=" + time_text(adaptive_min_));
+      o.push_back("time.initial=" + time_text(adaptive_min_));
+    }
   } else {
     o.push_back("time.step=" + time_text(r.h));
     // A sampled block whose sample time is the macro step keeps sampling at each exchange.
@@ -918,6 +930,15 @@ int Bench::run() {
   scene_name_ = base->name;
   h0_ = base->time.step;
   doc_ = YAML::Clone(base->root.yaml());
+  if (base->time.adaptive) {
+    // The fixed points need a fixed step: the scene's time section without its adaptive
+    // keys, H around a tenth of its max (the adaptive points keep the scene's settings).
+    scene_adaptive_ = base->time.adaptive;
+    const double span = base->time.end - base->time.start;
+    h0_ = span / std::max(1.0, std::round(span / (scene_adaptive_->max / 10)));  // a whole number of steps
+    for (const char* key : {"tolerance", "min", "max", "initial", "scales"}) doc_["time"].remove(key);
+    doc_["time"]["step"] = time_text(h0_);
+  }
   for (const auto& p : base->participants) {
     participants_.push_back(p.name);
     if (doc_["participants"][p.name]["params"] && doc_["participants"][p.name]["params"]["sample_time"])

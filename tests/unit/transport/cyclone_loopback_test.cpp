@@ -8,22 +8,14 @@
 #include <functional>
 #include <thread>
 
+#include "loopback_helpers.h"
 #include "mechsim/transport/backends.h"
 
 namespace mechsim::transport {
 namespace {
 
-// A domain id of its own per test process (tests run in parallel): 200 + pid % 30 is
-// outside what most launcher runs pick first, and runs are isolated by run id anyway.
-int test_domain() { return 200 + static_cast<int>(::getpid() % 30); }
-
-bool wait_until(Participant& p, const std::function<bool()>& done) {
-  for (int i = 0; i < 500; ++i) {
-    if (done()) return true;
-    p.wait(std::chrono::milliseconds(10));
-  }
-  return done();
-}
+using testing::test_domain;
+using testing::wait_until;
 
 class CycloneLoopback : public ::testing::Test {
  protected:

@@ -12,21 +12,14 @@
 #include <string>
 #include <vector>
 
+#include "loopback_helpers.h"
 #include "mechsim/transport/backends.h"
 
 namespace mechsim::transport {
 namespace {
 
-// A domain id of its own per test process (as in cyclone_loopback_test.cpp).
-int test_domain() { return 200 + static_cast<int>(::getpid() % 30); }
-
-bool wait_until(Participant& p, const std::function<bool()>& done) {
-  for (int i = 0; i < 500; ++i) {
-    if (done()) return true;
-    p.wait(std::chrono::milliseconds(10));
-  }
-  return done();
-}
+using testing::test_domain;
+using testing::wait_until;
 
 std::vector<std::string> vendors() {
   std::vector<std::string> v{"inproc"};
