@@ -77,7 +77,7 @@ SignalRef parse_signal_ref(const ConfigNode& node, const std::string& text) {
 
 // `step: adaptive` with tolerance, min, max, initial (defaults: max = a hundredth of the run,
 // min = max / 1000, initial = min, tolerance 1e-3).
-AdaptiveStepSpec parse_adaptive_step(const ConfigNode& t, double duration) {
+AdaptiveStepSpec parse_adaptive_step(const ConfigNode& t, double start, double duration) {
   AdaptiveStepSpec a;
   if (t.has("tolerance")) {
     a.tolerance = t.number("tolerance");
@@ -89,6 +89,10 @@ AdaptiveStepSpec parse_adaptive_step(const ConfigNode& t, double duration) {
   if (a.max > duration) t.child("max").fail("expected max <= end - start (" + std::to_string(duration) + " s)");
   // Each node keeps the instants of the run's steps (a double each): bounded here.
   if (duration / a.min > 1e8) t.child("min").fail("expected at most 1e8 steps of the smallest length (end - start) / min");
+  // Every step must move time forward in doubles, at the run's largest |t| too.
+  const double largest_t = std::max(std::abs(start), std::abs(start + duration));
+  if (!(largest_t + a.min > largest_t))
+    t.child("min").fail("expected a smallest step that moves t = " + std::to_string(largest_t) + " s forward in double precision");
   a.initial = t.has("initial") ? t.positive_quantity("initial", dim::time) : a.min;
   if (!(a.initial >= a.min && a.initial <= a.max)) t.child("initial").fail("expected a first step between min and max");
   if (auto scales = t.optional_child("scales")) {
@@ -121,7 +125,7 @@ TimeSpec parse_time(const ConfigNode& t) {
   if (!(spec.end > spec.start))
     t.child("end").fail("expected an end time after the start time (" + std::to_string(spec.start) + " s)");
   if (adaptive) {
-    spec.adaptive = parse_adaptive_step(t, spec.end - spec.start);
+    spec.adaptive = parse_adaptive_step(t, spec.start, spec.end - spec.start);
     spec.step = spec.adaptive->max;
     return spec;
   }

@@ -204,6 +204,9 @@ TEST(SceneValidation, AdaptiveStep) {
   expect_refused(adaptive(", min: 2 ms, max: 1 ms"), "time.min", "min <= max");
   expect_refused(adaptive(", max: 3 s"), "time.max", "end - start");
   expect_refused(adaptive(", min: 1 ns"), "time.min", "1e8 steps");
+  std::string far = adaptive(", min: 1 ns, max: 1 ns");
+  far.replace(far.find("start: 0 s, end: 2 s"), std::string("start: 0 s, end: 2 s").size(), "start: 1e9 s, end: 1.0000000000001e9 s");
+  expect_refused(far, "time.min", "double precision");
   expect_refused(adaptive(", initial: 1 s, max: 1 ms"), "time.initial", "between min and max");
   expect_refused(adaptive(", tolerance: 1e-3, stepp: 1"), "time", "unknown key 'stepp'");
   expect_refused(adaptive(", scales: {press: {drive_torque_rest: 20 N m}}"), "time.scales.press", "participant of this scene");
