@@ -96,7 +96,7 @@ struct Scheme {
 // Runs the coupled oscillator with macro step h and returns the largest error of x1 and x2
 // on the macro-step grid.
 double coupled_error(const Scheme& scheme, double h) {
-  config::TimeSpec time{0.0, kEnd, h, std::nullopt};
+  config::TimeSpec time{0.0, kEnd, h};
   config::ParticipantSpec spec;
   spec.solver.method = "cvode_adams";
   spec.solver.rtol = 1e-12;

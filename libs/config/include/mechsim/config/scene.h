@@ -34,7 +34,7 @@ struct TimeSpec {
   double end = 0.0;    // s
   double step = 0.0;   // macro (base) step H, s; with an adaptive step its largest, `max`
   long steps() const;  // number of macro steps, (end - start) / step, exact (fixed step only)
-  std::optional<AdaptiveStepSpec> adaptive;
+  std::optional<AdaptiveStepSpec> adaptive = std::nullopt;
 };
 
 enum class EdgeOrder { jacobi, gauss_seidel };
