@@ -99,6 +99,11 @@ TEST_F(ReplayTest, AReplayOfAnAdaptiveRunStepsWhereTheRunStepped) {
   const json s = summary("original");
   EXPECT_TRUE(s["recording"]["complete"].get<bool>()) << s["recording"].dump(2);
   const auto steps = s["steps"].get<std::uint64_t>();
+  // The recording holds each node's step proposals too (one per step but the last).
+  bool proposals = false;
+  for (const auto& t : s["recording"]["topics"])
+    if (t["topic"] == "servo/step") proposals = t["recorded"].get<std::uint64_t>() + 1 == steps;
+  EXPECT_TRUE(proposals) << s["recording"]["topics"].dump(2);
   EXPECT_GT(s["adaptive_step"]["longest_s"].get<double>(), 1.5 * s["adaptive_step"]["shortest_s"].get<double>())
       << "the step did not vary: " << s["adaptive_step"].dump();
   const fs::path original_dir = run_folder("original");

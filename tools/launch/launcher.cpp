@@ -167,6 +167,11 @@ std::string Run::divergence_advice_text(const std::string& node) const {
   char step[64], now[64];
   std::snprintf(step, sizeof step, "%g us", scene_.time.step / 4 * 1e6);
   std::snprintf(now, sizeof now, "%g us", scene_.time.step * 1e6);
+  // An adaptive step lengthens its steps up to `max` as long as the estimate allows; a
+  // stiff cut can be unstable long before its coupling error shows (docs/accuracy.md).
+  if (scene_.time.adaptive)
+    return ". The coupled run is unstable with an adaptive step of up to " + std::string(now) + " across " + cuts +
+           "; lower time.max, e.g. --set 'time.max=" + step + "' (a fixed step's stable limit: mechsim bench SCENE --stability)";
   // The stable step, found by in-process runs of the resolved scene (stable_step.h),
   // halving the macro step; any sampled participant follows it.
   std::optional<double> stable;

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "mechsim/cosim/step_topic.h"
 #include "mechsim/transport/backends.h"
 #include "mechsim/transport/topic_types.h"
 #include "recorder.h"
@@ -29,6 +30,11 @@ std::unique_ptr<RunRecording> RunRecording::start(const cosim::ScenePlan& plan, 
       options.topic_types[node.topic] = node.type->publishes->idl_name;
       r->data_topics_.push_back(node.topic);
     }
+  // An adaptive step's proposals (<node>/step): each node's error estimate at every step.
+  if (plan.grid()->is_adaptive())
+    for (const auto& node : plan.nodes())
+      if (const std::string topic = cosim::step_topic(node.name()); options.topics.selects(topic))
+        options.topic_types[topic] = cosim::step_proposal_type().idl_name;
   if (options.topics.selects(transport::kControlTopic)) options.topic_types[transport::kControlTopic] = "mechsim::msg::Control";
   r->file_ = options.file;
   r->recorder_ = recorder::start_recording(domain_id, options);

@@ -679,6 +679,9 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
       for (std::size_t e = 0; e < node.inputs.size(); ++e)
         if (!stepper.channel(e).ready_for_step(stepper.step())) missing += (missing.empty() ? "" : ", ") + describe_partner(scene, node.inputs[e].from, node.inputs[e].topic);
       if (node.cut && missing.empty()) missing = describe_partner(scene, node.cut->partner, node.cut->partner_topic);
+      if (missing.empty())  // an adaptive step waits for the partners' proposals
+        for (const std::size_t i : stepper.missing_proposals())
+          missing += (missing.empty() ? "" : ", ") + describe_partner(scene, plan.nodes()[i].name(), step_topic(plan.nodes()[i].name()));
       char buf[96];
       std::snprintf(buf, sizeof buf, "no sample for step %llu for %.1f s (faults.partition_grace %g s) from ",
                     static_cast<unsigned long long>(stepper.step()), waited, scene.faults.partition_grace);

@@ -131,6 +131,11 @@ void NodeStepper::add_proposal(std::size_t participant, std::uint64_t step, cons
   agree_if_complete();
 }
 
+std::vector<std::size_t> NodeStepper::missing_proposals() const {
+  if (!agreement_ || step_known() || grid_->steps() == 0) return {};
+  return agreement_->missing(grid_->steps() - 1);  // the proposals that set the next instant
+}
+
 void NodeStepper::agree_if_complete() {
   // The proposals made at step j set t_j+2. (Another node of this process may have extended
   // a shared grid already: extend() then checks that it agreed the same.)

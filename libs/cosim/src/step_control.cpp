@@ -139,6 +139,14 @@ bool StepAgreement::complete(std::uint64_t k) const {
   return it != by_step_.end() && it->second.size() >= participants_;
 }
 
+std::vector<std::size_t> StepAgreement::missing(std::uint64_t k) const {
+  std::vector<std::size_t> out;
+  const auto it = by_step_.find(k);
+  for (std::size_t i = 0; i < participants_; ++i)
+    if (it == by_step_.end() || !it->second.count(i)) out.push_back(i);
+  return out;
+}
+
 AgreedStep end_of_step(double t_k, double h, double limit, bool limit_is_event, const config::AdaptiveStepSpec& spec,
                        double end) {
   AgreedStep out{t_k + h, false};

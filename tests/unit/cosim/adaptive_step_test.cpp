@@ -108,6 +108,8 @@ TEST(StepAgreement, TheSmallestProposalTheNextEventAndTheEnd) {
   EXPECT_FALSE(a.complete(7));
   EXPECT_TRUE(a.add(2, 7, proposal(1e-3))) << "the same proposal twice is a duplicate";
   EXPECT_FALSE(a.add(2, 7, proposal(3e-3))) << "another proposal for the same step is refused";
+  EXPECT_EQ(a.missing(7), std::vector<std::size_t>{1}) << "what a node names when it waits too long";
+  EXPECT_EQ(a.missing(8), (std::vector<std::size_t>{0, 1, 2}));
   EXPECT_TRUE(a.add(1, 7, proposal(5e-3, 0.5035, true)));
   ASSERT_TRUE(a.complete(7));
   EXPECT_EQ(a.agreed(7, t).t_next, t + 1e-3);

@@ -76,6 +76,9 @@ class NodeStepper {
   StepProposal propose();
   void add_proposal(std::size_t participant, std::uint64_t step, const StepProposal& proposal);
   std::size_t participant_index() const { return self_; }
+  // The participants (plan indices) whose proposal the next step still waits for; empty when
+  // the step is agreed or the run has a fixed step.
+  std::vector<std::size_t> missing_proposals() const;
 
   // All block outputs at the current step (for the run folder), and solver statistics.
   const std::vector<double>& outputs() const { return y_; }

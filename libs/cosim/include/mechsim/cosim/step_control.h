@@ -115,6 +115,8 @@ class StepAgreement {
   // or a bug: the caller refuses it). The caller leaves out proposals of steps it has passed.
   bool add(std::size_t participant, std::uint64_t k, const StepProposal& p);
   bool complete(std::uint64_t k) const;
+  // The participants whose proposal of step k is not here yet.
+  std::vector<std::size_t> missing(std::uint64_t k) const;
   // Requires complete(k): the end of the step that starts at `t` (t_k+1).
   AgreedStep agreed(std::uint64_t k, double t) const;
   // Forgets the proposals of steps before k.
