@@ -197,22 +197,17 @@ void CompositeBlock::restore_discrete_state(std::span<const double> saved) {
 }
 
 ReferenceRun run_reference(ScenePlan& plan, double rtol, double atol) {
-  const StepGrid& grid = *plan.grid();  // sampled where the nodes publish
-  if (grid.is_adaptive())
+  if (plan.grid()->is_adaptive())
     throw std::invalid_argument("the reference of a scene with an adaptive step is sampled at the instants its run took");
-  std::vector<double> instants(grid.steps() + 1);
-  for (std::uint64_t k = 0; k < instants.size(); ++k) instants[k] = grid.time(k);
-  return run_reference_at(plan, instants, rtol, atol);
+  return run_reference_at(plan, run_instants(plan, ""), rtol, atol);  // sampled where the nodes publish
 }
 
 std::vector<double> run_instants(const ScenePlan& plan, const std::string& run_dir) {
   const StepGrid& grid = *plan.grid();
-  if (!grid.is_adaptive()) {
-    std::vector<double> instants(grid.steps() + 1);
-    for (std::uint64_t k = 0; k < instants.size(); ++k) instants[k] = grid.time(k);
-    return instants;
-  }
-  return read_output_log(run_dir + "/" + plan.nodes().front().name() + ".outputs.bin").data.at(0);
+  if (grid.is_adaptive()) return read_output_log(run_dir + "/" + plan.nodes().front().name() + ".outputs.bin").data.at(0);
+  std::vector<double> instants(grid.steps() + 1);
+  for (std::uint64_t k = 0; k < instants.size(); ++k) instants[k] = grid.time(k);
+  return instants;
 }
 
 ReferenceRun run_reference_at(ScenePlan& plan, std::span<const double> instants, double rtol, double atol) {

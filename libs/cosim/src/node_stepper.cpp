@@ -96,16 +96,11 @@ StepProposal NodeStepper::propose() {
   // Made at step k, for the step after the next, k+1 -> k+2 (t_k+1 is agreed already): the
   // proposals travel while the nodes take step k -> k+1, so no node waits for them.
   const double t_next = grid_->time(k_ + 1);
-  StepProposal p;
-  if (channels_.empty()) {
-    p = propose_step(spec, 0.0, std::nullopt);  // no inputs: no coupling error of its own
-    p.step_length = spec.max;
-  } else {
-    // After a discontinuity (or a law joint) the controller starts again from its initial
-    // step, like an integrator after an event: the step before says nothing of what follows.
-    const bool restart = grid_->is_event(k_ + 1);
-    p = propose_step(spec, restart ? 0.0 : grid_->step_length(k_), estimate_->ratio_at(k_, spec.tolerance));
-  }
+  // After a discontinuity (or a law joint) the controller starts again from its initial
+  // step, like an integrator after an event: the step before says nothing of what follows.
+  const bool restart = grid_->is_event(k_ + 1);
+  StepProposal p = propose_step(spec, restart ? 0.0 : grid_->step_length(k_), estimate_->ratio_at(k_, spec.tolerance));
+  if (channels_.empty()) p.step_length = spec.max;  // no inputs: no coupling error of its own
   // The participants' scheduled discontinuities: every node knows them (the plan), every
   // node's proposal lands on the next one.
   const double event = grid_->next_scheduled_event(t_next);
