@@ -24,7 +24,11 @@ NodeStepper::NodeStepper(PlannedNode& node, std::shared_ptr<const StepGrid> grid
     std::vector<CouplingErrorEstimate::Edge> edges;
     for (const auto& edge : node.inputs) {
       CouplingErrorEstimate::Edge e{edge.order, edge.reconstruction, {}, std::vector<double>(edge.type->fields.size(), 0.0)};
-      for (const auto& [field, input] : edge.field_to_input) e.fields.push_back(static_cast<std::size_t>(field));
+      // A Gauss-Seidel edge into a block that neither integrates nor samples makes no coupling
+      // error: the block reads its inputs only at step ends, where the samples are exact.
+      const bool reads_only_at_step_ends = block.num_states() == 0 && !(block.sample_time() > 0);
+      if (!(edge.order == config::EdgeOrder::gauss_seidel && reads_only_at_step_ends))
+        for (const auto& [field, input] : edge.field_to_input) e.fields.push_back(static_cast<std::size_t>(field));
       for (const auto& [key, value] : grid_->adaptive_spec().scales)
         for (std::size_t f = 0; f < edge.type->fields.size(); ++f)
           if (key == edge.from + "." + edge.type->fields[f].name) e.scales[f] = value;
@@ -99,7 +103,9 @@ StepProposal NodeStepper::propose() {
   // After a discontinuity (or a law joint) the controller starts again from its initial
   // step, like an integrator after an event: the step before says nothing of what follows.
   const bool restart = grid_->is_event(k_ + 1);
-  StepProposal p = propose_step(spec, restart ? 0.0 : grid_->step_length(k_), estimate_->ratio_at(k_, spec.tolerance));
+  const double current_h = restart ? 0.0 : grid_->step_length(k_);
+  const auto estimate = estimate_->at(k_, spec.tolerance, current_h);
+  StepProposal p = propose_step(spec, current_h, estimate);
   if (channels_.empty()) p.step_length = spec.max;  // no inputs: no coupling error of its own
   // The participants' scheduled discontinuities: every node knows them (the plan), every
   // node's proposal lands on the next one.
@@ -241,7 +247,7 @@ void NodeStepper::step(std::vector<double>& topic_values) {
   for (std::size_t e = 0; e < channels_.size(); ++e) {
     channels_[e].values_at_step_end(k, scratch_);
     for (const auto& [field, input] : node_.inputs[e].field_to_input) u_[input] = scratch_[field];
-    if (estimate_) estimate_->used_at_step_end(e, k + 1, t_next, scratch_);
+    if (estimate_) estimate_->used_at_step_end(e, k + 1, t_next, scratch_, grid_->is_event(k + 1));
   }
   // The torque published at t_k+1: the last two levels (means over their sub-intervals)
   // extrapolated to the step's end; the same on both sides.

@@ -9,7 +9,7 @@ namespace mechsim::cosim {
 namespace {
 
 constexpr double kSafety = 0.8;     // aim below the tolerance: no step is ever redone
-constexpr double kMaxGrowth = 1.5;  // per step; a slow rise keeps the estimate ahead of the error
+constexpr double kMaxGrowth = 2.0;   // per step; the estimate acts a step late
 constexpr double kMaxShrink = 0.2;
 
 int error_order(config::EdgeOrder order, config::Reconstruction r) {
@@ -20,6 +20,33 @@ int error_order(config::EdgeOrder order, config::Reconstruction r) {
     case config::Reconstruction::quadratic: return 3;
   }
   return 1;
+}
+
+double integer_power(double x, int q) {
+  double p = 1.0;
+  for (int i = 0; i < q; ++i) p *= x;
+  return p;
+}
+
+// The longest h with (k1 + dk h / 2) h^q <= target (k1, dk >= 0). The left side is
+// increasing and convex in h, so Newton's method from the smaller of the bounds each term
+// gives alone (which lies at or beyond the root) comes down on the root from above and
+// never overshoots it: a fixed count of iterations, the same doubles on every node.
+double longest_within(double k1, double dk, int q, double target) {
+  const double c = dk / 2;
+  const double inf = std::numeric_limits<double>::infinity();
+  if (!(k1 > 0) && !(c > 0)) return inf;
+  const double by_k1 = k1 > 0 ? std::pow(target / k1, 1.0 / q) : inf;
+  const double by_trend = c > 0 ? std::pow(target / c, 1.0 / (q + 1)) : inf;
+  double h = std::min(by_k1, by_trend);
+  for (int i = 0; i < 8; ++i) {
+    const double hq = integer_power(h, q);
+    const double g = (k1 + c * h) * hq - target;
+    const double slope = k1 * q * hq / h + c * (q + 1) * hq;
+    if (!(g > 0) || !(slope > 0)) break;
+    h -= g / slope;
+  }
+  return h;
 }
 
 }  // namespace
@@ -42,87 +69,127 @@ double CouplingErrorEstimate::Channel::scale(std::size_t f) const {
   return std::max(least, std::max(hi[f] - lo[f], std::max(std::abs(lo[f]), std::abs(hi[f]))));
 }
 
+double CouplingErrorEstimate::Channel::instant(std::uint64_t k) const {
+  for (const auto& [step, t] : instants)
+    if (step == k) return t;
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+void CouplingErrorEstimate::Channel::measured(std::uint64_t k, std::span<const double> difference) {
+  // A reconstruction that reaches back across the last event measures the jump, not the
+  // signal: no estimate until the samples it uses all lie after it.
+  const double a = instant(k) - instant(k - 1);
+  if (k < last_event + static_cast<std::uint64_t>(reaches_back) || !(a > 0)) {
+    last.reset();
+    before.reset();
+    return;
+  }
+  Measured m{k, a, std::vector<double>(difference.size(), 0.0)};
+  const double a_q = std::pow(a, error_order);
+  for (std::size_t f : fields) {
+    if (f >= difference.size()) continue;
+    const double s = scale(f);
+    if (s > 0 && std::isfinite(difference[f])) m.k[f] = difference[f] / s / a_q;
+  }
+  before = std::move(last);
+  last = std::move(m);
+}
+
 CouplingErrorEstimate::CouplingErrorEstimate(std::vector<Edge> edges) {
   for (auto& edge : edges) {
     Channel c;
     c.order = edge.order;
     c.error_order = error_order(edge.order, edge.reconstruction);
+    // Gauss-Seidel: the line through the two samples before t_k; Jacobi: hold 1, linear 2,
+    // quadratic 3 samples before t_k.
+    c.reaches_back = edge.order == config::EdgeOrder::gauss_seidel ? 2 : c.error_order;
     c.fields = std::move(edge.fields);
     c.least_scale = std::move(edge.scales);
     channels_.push_back(std::move(c));
   }
 }
 
-void CouplingErrorEstimate::used_at_step_end(std::size_t edge, std::uint64_t k, double t_k, std::span<const double> values) {
+void CouplingErrorEstimate::used_at_step_end(std::size_t edge, std::uint64_t k, double t_k, std::span<const double> values,
+                                             bool event) {
   Channel& c = channels_.at(edge);
   c.widen(values);
+  if (!c.instants.empty() && k != c.instants.back().first + 1) {  // not consecutive (a restore)
+    c.instants.clear();
+    c.history.clear();
+    c.last.reset();
+    c.before.reset();
+  }
+  if (c.instants.size() == 4) c.instants.erase(c.instants.begin());
+  c.instants.emplace_back(k, t_k);
+  if (event) c.last_event = k;
   if (c.order == config::EdgeOrder::jacobi) {
     c.used_step = k;
     c.used.assign(values.begin(), values.end());
     return;
   }
-  if (c.history_step != UINT64_MAX && k != c.history_step + 1) c.history.clear();  // not consecutive (a restore)
   if (c.history.size() == 3) c.history.erase(c.history.begin());
-  c.history.emplace_back(t_k, std::vector<double>(values.begin(), values.end()));
-  c.history_step = k;
+  c.history.emplace_back(values.begin(), values.end());
+  if (c.history.size() < 3) return;
+  const double r = (c.instant(k) - c.instant(k - 1)) / (c.instant(k - 1) - c.instant(k - 2));
+  const auto& v0 = c.history[0];
+  const auto& v1 = c.history[1];
+  const auto& v2 = c.history[2];
+  std::vector<double> d(v2.size(), 0.0);
+  for (std::size_t f = 0; f < d.size(); ++f) d[f] = v2[f] - (v1[f] + (v1[f] - v0[f]) * r);
+  c.measured(k, d);
 }
 
 void CouplingErrorEstimate::received(std::size_t edge, std::uint64_t k, std::span<const double> values) {
   Channel& c = channels_.at(edge);
   if (c.order != config::EdgeOrder::jacobi) return;
   c.widen(values);
-  c.received_step = k;
-  c.received.assign(values.begin(), values.end());
+  if (c.used_step != k || c.used.size() != values.size()) return;
+  std::vector<double> d(values.size(), 0.0);
+  for (std::size_t f = 0; f < d.size(); ++f) d[f] = values[f] - c.used[f];
+  c.measured(k, d);
 }
 
-std::optional<CouplingErrorEstimate::Result> CouplingErrorEstimate::ratio_at(std::uint64_t k, double tolerance) const {
-  std::optional<Result> decisive;
-  double smallest_factor = std::numeric_limits<double>::infinity();
+std::optional<CouplingErrorEstimate::Result> CouplingErrorEstimate::at(std::uint64_t k, double tolerance,
+                                                                     double current_h) const {
+  std::optional<Result> out;
   for (const Channel& c : channels_) {
-    double e = 0.0;
-    bool known = false;
-    if (c.order == config::EdgeOrder::jacobi) {
-      if (c.used_step != k || c.received_step != k || c.used.size() != c.received.size()) continue;
-      for (std::size_t f : c.fields) {
-        if (f >= c.used.size()) continue;
-        const double s = c.scale(f);
-        if (s > 0 && std::isfinite(c.used[f]) && std::isfinite(c.received[f])) e = std::max(e, std::abs(c.received[f] - c.used[f]) / s);
-      }
-      known = true;
-    } else {
-      if (c.history.size() < 3 || c.history_step != k) continue;
-      const auto& [t0, v0] = c.history[0];
-      const auto& [t1, v1] = c.history[1];
-      const auto& [t2, v2] = c.history[2];
-      const double r = (t2 - t1) / (t1 - t0);
-      for (std::size_t f : c.fields) {
-        const double s = c.scale(f);
-        if (f >= v2.size() || !(s > 0) || !std::isfinite(v0[f]) || !std::isfinite(v1[f]) || !std::isfinite(v2[f])) continue;
-        e = std::max(e, std::abs(v2[f] - (v1[f] + (v1[f] - v0[f]) * r)) / s);
-      }
-      known = true;
+    if (!c.last || c.last->step != k) continue;
+    const Measured& m = *c.last;
+    const int q = c.error_order;
+    const bool trend = c.before && c.before->step + 1 == k;
+    const double target = kSafety * tolerance;
+    double ratio = 0.0;
+    double longest = std::numeric_limits<double>::infinity();
+    for (std::size_t f : c.fields) {
+      if (f >= m.k.size()) continue;
+      ratio = std::max(ratio, std::abs(m.k[f]) * std::pow(m.length, q) / tolerance);
+      // K per unit time between the two steps' midpoints, carried to the next step's start.
+      const double dk = trend ? (m.k[f] - c.before->k[f]) / ((m.length + c.before->length) / 2) : 0.0;
+      const double k1 = m.k[f] + dk * (m.length / 2 + current_h);
+      longest = std::min(longest, longest_within(std::abs(k1), std::abs(dk), q, target));
     }
-    if (!known) continue;
-    const double ratio = e / tolerance;
-    // The factor this channel allows (before safety and limits): the smallest one decides.
-    const double factor = ratio > 0 ? std::pow(ratio, -1.0 / c.error_order) : std::numeric_limits<double>::infinity();
-    if (!decisive || factor < smallest_factor) {
-      smallest_factor = factor;
-      decisive = Result{ratio, c.error_order};
+    if (!out) {
+      out = Result{ratio, q, longest};
+      continue;
+    }
+    out->ratio = std::max(out->ratio, ratio);
+    if (longest < out->longest) {
+      out->longest = longest;
+      out->order = q;
     }
   }
-  return decisive;
+  return out;
 }
 
-StepProposal propose_step(const config::AdaptiveStepSpec& spec, double last_h,
+StepProposal propose_step(const config::AdaptiveStepSpec& spec, double current_h,
                           const std::optional<CouplingErrorEstimate::Result>& estimate) {
   StepProposal p;
   p.error_estimate = std::numeric_limits<double>::quiet_NaN();
-  double h = last_h > 0 ? last_h : spec.initial;
-  if (estimate && last_h > 0) {
+  double h = current_h > 0 ? current_h : spec.initial;
+  if (estimate && current_h > 0) {
     p.error_estimate = estimate->ratio;
-    const double factor = estimate->ratio > 0 ? kSafety * std::pow(estimate->ratio, -1.0 / estimate->order) : kMaxGrowth;
-    h = last_h * std::clamp(factor, kMaxShrink, kMaxGrowth);
+    // A bounded change of the step under way: the estimate acts a step late.
+    h = std::clamp(estimate->longest, current_h * kMaxShrink, current_h * kMaxGrowth);
   }
   p.step_length = std::clamp(h, spec.min, spec.max);
   return p;

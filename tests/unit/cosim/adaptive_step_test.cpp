@@ -45,22 +45,72 @@ TEST(CouplingErrorEstimate, AHeldRampIsOffByItsSlopeTimesTheStep) {
   CouplingErrorEstimate est({{EdgeOrder::jacobi, Reconstruction::hold, {0}}});
   est.used_at_step_end(0, 9, 0.9, std::vector<double>{0.0});  // an older step: widens the range
   est.used_at_step_end(0, 10, 1.0, std::vector<double>{1.8});
-  EXPECT_FALSE(est.ratio_at(10, 1e-2).has_value()) << "no estimate before the sample of step 10";
+  EXPECT_FALSE(est.at(10, 1e-2, 0.1).has_value()) << "no estimate before the sample of step 10";
   est.received(0, 10, std::vector<double>{2.0});
-  const auto r = est.ratio_at(10, 1e-2);
+  const auto r = est.at(10, 1e-2, 0.1);
   ASSERT_TRUE(r.has_value());
   EXPECT_DOUBLE_EQ(r->ratio, 0.1 / 1e-2);
   EXPECT_EQ(r->order, 1);
+  // No step before it to tell a trend: e = K h with K = 0.1 / 0.1 s, so the step whose error
+  // is 0.8 tol is 0.8e-2 / 1 = 8 ms.
+  EXPECT_NEAR(r->longest, 8e-3, 1e-15);
+}
+
+TEST(CouplingErrorEstimate, AHeldSignalWhoseSlopePassesThroughZeroIsPredictedFromItsTrend) {
+  // u = (t - 1)^2, scale 1, held, steps of 0.1 s. The step 0.9 -> 1.0 errs by only 0.01
+  // (slope -0.1 at its midpoint), the one before by 0.03 (-0.3): K rises by 2 per second.
+  // Carried to t = 1.1, where the step after the one under way (0.1 s) starts, K = 0.2, the
+  // true slope there, and the error of a step h from there is (0.2 + 2 h / 2) h: 0.8 tol =
+  // 8e-3 gives h = (-0.2 + sqrt(0.04 + 0.032)) / 2 = 34.16 ms, where the last step's
+  // error alone (K = 0.1) would allow 80 ms and overshoot as the slope grows again.
+  CouplingErrorEstimate est({{EdgeOrder::jacobi, Reconstruction::hold, {0}, {1.0}}});
+  const auto u = [](double t) { return (t - 1) * (t - 1); };
+  est.used_at_step_end(0, 7, 0.7, std::vector<double>{u(0.6)});
+  est.used_at_step_end(0, 8, 0.8, std::vector<double>{u(0.7)});
+  est.received(0, 8, std::vector<double>{u(0.8)});
+  est.used_at_step_end(0, 9, 0.9, std::vector<double>{u(0.8)});
+  est.received(0, 9, std::vector<double>{u(0.9)});
+  est.used_at_step_end(0, 10, 1.0, std::vector<double>{u(0.9)});
+  est.received(0, 10, std::vector<double>{u(1.0)});
+  const auto r = est.at(10, 1e-2, 0.1);
+  ASSERT_TRUE(r.has_value());
+  EXPECT_NEAR(r->ratio, 0.01 / 1e-2, 1e-12);
+  EXPECT_NEAR(r->longest, (-0.2 + std::sqrt(0.04 + 0.032)) / 2, 1e-9);
+}
+
+TEST(CouplingErrorEstimate, NoStepWhoseReconstructionReachesBackAcrossAnEventIsMeasured) {
+  // A load jumps by 10 at the event instant t_5: the step 4 -> 5 (held) and, for a linear
+  // reconstruction, also 5 -> 6 use a sample from before it. They measure the jump, not the
+  // signal: no estimate; the first step whose samples all lie after it measures again.
+  for (const auto rec : {Reconstruction::hold, Reconstruction::linear}) {
+    CouplingErrorEstimate est({{EdgeOrder::jacobi, rec, {0}, {10.0}}});
+    double held = 0.0;
+    for (std::uint64_t k = 1; k <= 8; ++k) {
+      const double t = 0.1 * static_cast<double>(k);
+      const double sample = k >= 5 ? 10.0 + t : t;  // the partner's step-k sample
+      est.used_at_step_end(0, k, t, std::vector<double>{held}, k == 5);
+      est.received(0, k, std::vector<double>{sample});
+      held = sample;  // hold: what the node uses at t_k+1
+      const bool after = k >= 5 + (rec == Reconstruction::hold ? 1u : 2u);  // samples all from t_5 on
+      if (k >= 2 && !(k >= 5 && !after)) {
+        EXPECT_TRUE(est.at(k, 1e-2, 0.1).has_value()) << "step " << k;
+      } else if (k >= 5) {
+        EXPECT_FALSE(est.at(k, 1e-2, 0.1).has_value()) << "step " << k << " reaches back across the event";
+      }
+    }
+  }
 }
 
 TEST(CouplingErrorEstimate, FieldsTheNodeDoesNotUseAreNoError) {
   CouplingErrorEstimate est({{EdgeOrder::jacobi, Reconstruction::linear, {1}}});
+  est.used_at_step_end(0, 2, 0.2, std::vector<double>{0.0, 1.0});
   est.used_at_step_end(0, 3, 0.3, std::vector<double>{0.0, 1.0});
   est.received(0, 3, std::vector<double>{1000.0, 1.0});  // field 0 jumps, but feeds no input
-  const auto r = est.ratio_at(3, 1e-3);
+  const auto r = est.at(3, 1e-3, 0.1);
   ASSERT_TRUE(r.has_value());
   EXPECT_EQ(r->ratio, 0.0);
   EXPECT_EQ(r->order, 2);
+  EXPECT_EQ(r->longest, HUGE_VAL);
 }
 
 TEST(CouplingErrorEstimate, AGaussSeidelEdgeMeasuresTheCurvatureItsInterpolationMisses) {
@@ -69,25 +119,25 @@ TEST(CouplingErrorEstimate, AGaussSeidelEdgeMeasuresTheCurvatureItsInterpolation
   CouplingErrorEstimate est({{EdgeOrder::gauss_seidel, Reconstruction::hold, {0}}});
   est.used_at_step_end(0, 1, 0.0, std::vector<double>{0.0});
   est.used_at_step_end(0, 2, 1.0, std::vector<double>{1.0});
-  EXPECT_FALSE(est.ratio_at(2, 0.1).has_value()) << "two samples tell no curvature";
+  EXPECT_FALSE(est.at(2, 0.1, 1.0).has_value()) << "two samples tell no curvature";
   est.used_at_step_end(0, 3, 2.0, std::vector<double>{4.0});
-  const auto r = est.ratio_at(3, 0.1);
+  const auto r = est.at(3, 0.1, 1.0);
   ASSERT_TRUE(r.has_value());
   EXPECT_DOUBLE_EQ(r->ratio, 0.5 / 0.1);
   EXPECT_EQ(r->order, 2);
 }
 
-TEST(StepController, ScalesTheStepByTheEstimateWithinItsLimits) {
+TEST(StepController, TakesTheEstimatesLongestStepWithinItsLimits) {
   const auto s = spec();
-  // e = tol / 16 of order 2: factor 0.8 * 16^(1/2) = 3.2, limited to 1.5.
-  EXPECT_DOUBLE_EQ(propose_step(s, 1e-3, CouplingErrorEstimate::Result{1.0 / 16, 2}).step_length, 1.5e-3);
-  // e = 4 tol of order 2: 0.8 / 2 = 0.4.
-  EXPECT_DOUBLE_EQ(propose_step(s, 1e-3, CouplingErrorEstimate::Result{4.0, 2}).step_length, 0.4e-3);
-  // e = 10^4 tol: at most a fifth, then min.
-  EXPECT_DOUBLE_EQ(propose_step(s, 1e-3, CouplingErrorEstimate::Result{1e4, 1}).step_length, 0.2e-3);
-  EXPECT_DOUBLE_EQ(propose_step(s, 2e-6, CouplingErrorEstimate::Result{1e4, 1}).step_length, 1e-6);
-  EXPECT_DOUBLE_EQ(propose_step(s, 9e-3, CouplingErrorEstimate::Result{0.0, 1}).step_length, 1e-2);  // max
-  // The first step, and a node with nothing to estimate yet.
+  const auto longest = [](double h) { return CouplingErrorEstimate::Result{0.5, 1, h}; };
+  EXPECT_DOUBLE_EQ(propose_step(s, 1e-3, longest(1.7e-3)).step_length, 1.7e-3);
+  EXPECT_DOUBLE_EQ(propose_step(s, 1e-3, longest(5e-3)).step_length, 2e-3);    // at most twice the step under way
+  EXPECT_DOUBLE_EQ(propose_step(s, 1e-3, longest(1e-5)).step_length, 0.2e-3);  // at least a fifth
+  EXPECT_DOUBLE_EQ(propose_step(s, 2e-6, longest(1e-9)).step_length, 1e-6);    // min
+  EXPECT_DOUBLE_EQ(propose_step(s, 9e-3, longest(HUGE_VAL)).step_length, 1e-2);  // max
+  EXPECT_EQ(propose_step(s, 1e-3, longest(1.7e-3)).error_estimate, 0.5);
+  // The first step, a restart, and a node with nothing to estimate yet.
+  EXPECT_DOUBLE_EQ(propose_step(s, 0.0, longest(5e-3)).step_length, 1e-4);
   EXPECT_DOUBLE_EQ(propose_step(s, 0.0, std::nullopt).step_length, 1e-4);
   EXPECT_DOUBLE_EQ(propose_step(s, 3e-4, std::nullopt).step_length, 3e-4);
 }

@@ -6,9 +6,10 @@
 //    Gauss-Seidel edge the step-k sample against the line through the two samples before it
 //    (the curvature its linear interpolation missed). Each field's difference is divided by
 //    the field's scale (the largest of its range and its magnitude so far).
-//  - propose_step: the elementary controller. With the estimate e of order q (the power of
-//    H it falls with: hold 1, linear and Gauss-Seidel 2, quadratic 3) the next step is
-//    H_k-1 * 0.8 (tol / e)^(1/q), at most 1.5 H_k-1 and at least H_k-1 / 5, inside [min, max].
+//    The estimate predicts the error of a later step from the measured one (e = K H^q, q the
+//    power of H it falls with: hold 1, linear and Gauss-Seidel 2, quadratic 3) and K's trend.
+//  - propose_step: the controller. The step after the one under way (H_k) is the longest
+//    whose predicted error is 0.8 tol, at most 1.5 H_k and at least H_k / 5, inside [min, max].
 //    No step is redone (that would need every node to roll back): the controller is kept
 //    conservative instead (the 0.8 and the 1.5), and a step whose estimate exceeds the
 //    tolerance only makes the next one shorter.
@@ -62,42 +63,60 @@ class CouplingErrorEstimate {
   };
   explicit CouplingErrorEstimate(std::vector<Edge> edges);
   // After step k-1 -> k: what channel `edge` reconstructed at t_k (on a Gauss-Seidel edge
-  // that is the step-k sample itself).
-  void used_at_step_end(std::size_t edge, std::uint64_t k, double t_k, std::span<const double> values);
+  // that is the step-k sample itself). `event`: t_k is a discontinuity, so no step whose
+  // reconstruction reaches back across it measures the smooth signal after it.
+  void used_at_step_end(std::size_t edge, std::uint64_t k, double t_k, std::span<const double> values, bool event = false);
   // The partner's step-k sample of a Jacobi edge, once it is there.
   void received(std::size_t edge, std::uint64_t k, std::span<const double> values);
-  // e / tol for the step that ended at t_k, and the order of the channel that decides the
-  // next step (the smallest factor); nullopt when no channel can tell yet (the first steps).
   struct Result {
-    double ratio;  // e / tol
-    int order;
+    double ratio;    // e / tol of the step that ended at t_k, the worst channel's
+    int order;       // q of the channel that decides the next step
+    // The longest step after the one under way whose predicted error stays within the
+    // controller's safety times the tolerance (+inf: no channel limits it).
+    double longest;
   };
-  std::optional<Result> ratio_at(std::uint64_t k, double tolerance) const;
+  // nullopt when no channel can tell yet (the first steps, and the steps just after an event).
+  // The prediction: per field, the measured error of the step k-1 -> k (length a) as
+  // e = K a^q, K's trend from the step before (dK/dt between their midpoints), K carried to
+  // the start of the step after the one under way (length `current_h`), and the error of a
+  // step h there bounded by (|K| + |dK/dt| h / 2) h^q. The trend matters where a signal's
+  // slope passes through zero: the measured error is small there, the next steps' is not.
+  std::optional<Result> at(std::uint64_t k, double tolerance, double current_h) const;
 
  private:
+  struct Measured {
+    std::uint64_t step;      // the step k-1 -> k that ended at t_k
+    double length;           // t_k - t_k-1
+    std::vector<double> k;   // per topic field: signed e / scale / length^q (0: not measured)
+  };
   struct Channel {
     config::EdgeOrder order;
     int error_order;
+    int reaches_back;        // how many samples before t_k the reconstruction at t_k uses
     std::vector<std::size_t> fields;
     std::uint64_t used_step = UINT64_MAX;
     std::vector<double> used;                 // reconstructed at t_used_step
-    std::uint64_t received_step = UINT64_MAX;
-    std::vector<double> received;             // Jacobi: the partner's sample of received_step
-    // Gauss-Seidel: the samples of the last three steps with their instants (oldest first).
-    std::vector<std::pair<double, std::vector<double>>> history;
-    std::uint64_t history_step = UINT64_MAX;  // the step of history.back()
+    // The instants of the last steps (oldest first) and the last event step.
+    std::vector<std::pair<std::uint64_t, double>> instants;
+    std::uint64_t last_event = 0;
+    // Gauss-Seidel: the samples of the last three steps (oldest first).
+    std::vector<std::vector<double>> history;
+    std::optional<Measured> last, before;
     std::vector<double> lo, hi;               // per field, over every value seen
     std::vector<double> least_scale;          // per field (time.scales), may be empty
     void widen(std::span<const double> v);
     double scale(std::size_t f) const;
+    double instant(std::uint64_t k) const;    // NaN when not kept
+    void measured(std::uint64_t k, std::span<const double> difference);
   };
   std::vector<Channel> channels_;
 };
 
-// The controller's proposal for step k -> k+1 of a run with t_k = `t`, the step before of
-// length `last_h` (0 at k = 0: the spec's initial step) and the estimate (nullopt: keep
-// last_h). The scheduled discontinuities of the grid are landed on by the caller.
-StepProposal propose_step(const config::AdaptiveStepSpec& spec, double last_h,
+// The controller's proposal made at step k, for the step after the one under way (of length
+// `current_h`; 0 after a restart: the spec's initial step): the estimate's longest step,
+// within [current_h / 5, 1.5 current_h] and [min, max] (nullopt: keep the step). The
+// scheduled discontinuities of the grid are landed on by the caller.
+StepProposal propose_step(const config::AdaptiveStepSpec& spec, double current_h,
                           const std::optional<CouplingErrorEstimate::Result>& estimate);
 
 // The end of a step from t_k: t_k + h, or `limit` when it comes first or less than `min`
