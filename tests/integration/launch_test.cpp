@@ -70,18 +70,21 @@ TEST_F(Launch, CamPressRunsDistributedAndReproducesTheReference) {
 
 // The same press with an adaptive macro step (config/scenes/cam_press_adaptive.yaml): the
 // issue's target for the default press, under 1 % of range with no more macro steps than the
-// fixed grid's 2000. Measured: 1397 steps, 0.498 %; the error is about the tolerance (2e-3)
-// times the torque's scale (20 N m) over its range (19.3 N m), so 1 % leaves a factor 2.
+// fixed grid's 2000. Measured: 582 steps, 0.439 %.
 TEST_F(Launch, TheAdaptivePressStaysUnderOnePercentWithFewerStepsThanTheFixedGrid) {
   CommandResult r = run(RunFolderTest::launch_args(scene_path("cam_press_adaptive.yaml"), "a"), log("a"), 120);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const json s = summary("a");
   const auto steps = s["steps"].get<std::uint64_t>();
-  EXPECT_LT(steps, 2000u);
+  // The fixed 1 ms grid takes 2003 steps for 0.475 %; the adaptive one equidistributes the
+  // error at 0.8 tol x scale = 0.08 N m (0.41 % of the 19.3 N m range) and needs 582.
+  EXPECT_LT(steps, 1000u) << "not half the fixed grid's steps";
   EXPECT_GT(steps, 200u) << "hardly any steps: the controller did not refine";
   EXPECT_EQ(s["adaptive_step"]["steps"].get<std::uint64_t>(), steps);
   EXPECT_NEAR(s["adaptive_step"]["shortest_s"].get<double>(), 10e-6, 1e-9) << "every restart begins at `initial`";
-  EXPECT_LT(s["signals"]["cam.shaft_torque"]["max_rel_error"].get<double>(), 0.01);
+  // Under 1 % as the issue asks, and near what the tolerance asks: a few percent over 0.41 %
+  // where the estimate lags, not the 2 - 3x of a controller that overshoots.
+  EXPECT_LT(s["signals"]["cam.shaft_torque"]["max_rel_error"].get<double>(), 0.006);
   EXPECT_EQ(s["signals"]["follower.contact_force"]["max_abs_error"].get<double>(), 0.0) << "a Gauss-Seidel edge stays exact";
 }
 

@@ -410,7 +410,12 @@ class Bench {
   // The adaptive points (RunSpec::tolerance > 0), loosest tolerance first per variant.
   std::vector<RunSpec> adaptive_specs_;
   std::vector<RunResult> adaptive_results_;
-  double adaptive_max_ = 0, adaptive_min_ = 0;  // time.max and time.min/initial of the adaptive runs
+  double adaptive_max_ = 0, adaptive_min_ = 0, adaptive_initial_ = 0;  // time.max, time.min, time.initial of the adaptive runs
+  // time.scales of the adaptive points per variant, and where they come from ("scene", or
+  // "reference range" for a scene without them: reference_scales).
+  std::map<int, std::vector<std::pair<std::string, double>>> adaptive_scales_;
+  std::string adaptive_scales_from_ = "scene";
+  std::vector<std::pair<std::string, double>> reference_scales(int variant, double h);
   // A scene with an adaptive step of its own: its settings (all but the tolerance, which is
   // swept) for the adaptive points; the fixed points sweep H around a tenth of its max.
   std::optional<config::AdaptiveStepSpec> scene_adaptive_;
@@ -420,20 +425,15 @@ std::vector<std::string> Bench::run_overrides(const RunSpec& r, bool with_solver
   std::vector<std::string> o = opt_.overrides;
   o.push_back("mode=lockstep");
   if (r.adaptive()) {
-    // Between the smallest H swept / 100 and the largest; sampled blocks keep the scene's
-    // sample time.
+    // The scene's own adaptive settings, or the defaults of `step: adaptive`; sampled blocks
+    // keep the scene's sample time.
     o.push_back("time.step=adaptive");
     o.push_back("time.tolerance=" + num(r.tolerance, "%.9g"));
-    if (scene_adaptive_) {
-      o.push_back("time.max=" + num(scene_adaptive_->max, "%.17g"));
-      o.push_back("time.min=" + num(scene_adaptive_->min, "%.17g"));
-      o.push_back("time.initial=" + num(scene_adaptive_->initial, "%.17g"));
-      for (const auto& [field, scale] : scene_adaptive_->scales) o.push_back("time.scales." + field + "=" + num(scale, "%.17g"));
-    } else {
-      o.push_back("time.max=" + time_text(adaptive_max_));
-      o.push_back("time.min=" + time_text(adaptive_min_));
-      o.push_back("time.initial=" + time_text(adaptive_min_));
-    }
+    o.push_back("time.max=" + num(adaptive_max_, "%.17g"));
+    o.push_back("time.min=" + num(adaptive_min_, "%.17g"));
+    o.push_back("time.initial=" + num(adaptive_initial_, "%.17g"));
+    if (const auto it = adaptive_scales_.find(r.variant); it != adaptive_scales_.end())
+      for (const auto& [field, scale] : it->second) o.push_back("time.scales." + field + "=" + num(scale, "%.17g"));
   } else {
     o.push_back("time.step=" + time_text(r.h));
     // A sampled block whose sample time is the macro step keeps sampling at each exchange.
@@ -563,6 +563,33 @@ void Bench::compare(const config::Scene& scene, const Reference& ref, const std:
   }
 }
 
+std::vector<std::pair<std::string, double>> Bench::reference_scales(int variant, double h) {
+  Reference& ref = reference(variant, h);
+  std::vector<std::pair<std::string, double>> out;
+  if (!ref.error.empty() || !ref.scene) return out;
+  std::set<std::string> seen;
+  try {
+    const cosim::ScenePlan plan = cosim::ScenePlan::build(*ref.scene);
+    for (const auto& node : plan.nodes())
+      for (const auto& edge : node.inputs)
+        for (const auto& [field, input] : edge.field_to_input) {
+          const std::string name = edge.from + "." + edge.type->fields[static_cast<std::size_t>(field)].name;
+          const int c = ref.run.log.column(name);
+          if (c < 0 || !seen.insert(name).second) continue;
+          double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+          for (double v : ref.run.log.data[static_cast<std::size_t>(c)])
+            if (std::isfinite(v)) {
+              lo = std::min(lo, v);
+              hi = std::max(hi, v);
+            }
+          if (hi > lo) out.emplace_back(name, hi - lo);
+        }
+  } catch (const std::exception&) {
+    out.clear();
+  }
+  return out;
+}
+
 RunResult Bench::run_inproc_point(const RunSpec& r, const std::string& run_dir) {
   RunResult res;
   res.run_dir = run_dir;
@@ -602,12 +629,16 @@ RunResult Bench::run_inproc_point(const RunSpec& r, const std::string& run_dir) 
   }
   res.wall_time_s = seconds_since(t0);
   // Short runs are timed again (the outputs are the same bit for bit) and the fastest is
-  // kept: thread start and scheduling noise are a large part of a 50 ms run.
-  for (int repeat = 0; repeat < 2 && ir.ok && res.wall_time_s < 0.25; ++repeat) {
+  // kept: thread start and scheduling noise are a large part of a 50 ms run. Up to ten
+  // runs, until half a second has gone by.
+  double timed = res.wall_time_s;
+  for (int repeat = 0; repeat < 9 && ir.ok && res.wall_time_s < 0.25 && timed < 0.5; ++repeat) {
     io.run_id = ++run_counter_;
     const auto t1 = Clock::now();
     const cosim::InprocRunResult again = cosim::run_inproc(*scene, io);
-    if (again.ok) res.wall_time_s = std::min(res.wall_time_s, seconds_since(t1));
+    const double wall = seconds_since(t1);
+    timed += wall;
+    if (again.ok) res.wall_time_s = std::min(res.wall_time_s, wall);
   }
   long steps = 0, rhs = 0, etf = 0, nlf = 0, roots = 0;
   for (const auto& n : ir.nodes) {
@@ -776,7 +807,11 @@ json Bench::row_json(const RunSpec& r, const RunResult& res) const {
     row["tolerance"] = r.tolerance;
     row["time_max_s"] = adaptive_max_;
     row["time_min_s"] = adaptive_min_;
-    row["time_initial_s"] = adaptive_min_;
+    row["time_initial_s"] = adaptive_initial_;
+    row["scales"] = json::object();
+    if (const auto it = adaptive_scales_.find(r.variant); it != adaptive_scales_.end())
+      for (const auto& [field, scale] : it->second) row["scales"][field] = scale;
+    row["scales_from"] = adaptive_scales_from_;
     row["steps_taken_s"] = {{"min", finite_or_null(res.step_min_s)}, {"max", finite_or_null(res.step_max_s)}};
     row["reference"] = res.reference;
   }
@@ -1088,15 +1123,25 @@ int Bench::run() {
 
   // Adaptive points: the shipped scheme and the best fixed-H scheme at the scene's H (the
   // swept H nearest it): the smallest max error of cvode_bdf at --rtol, an error below the
-  // reference's own counting as 0, the first variant on a tie; cvode_bdf at --rtol, with
-  // time.max the largest H swept and time.min = time.initial the smallest / 100.
+  // reference's own counting as 0, the first variant on a tie; cvode_bdf at --rtol, with the
+  // scene's adaptive settings or the defaults of `step: adaptive`.
   json adaptive_choice = json::array();
   const std::vector<double> tolerances =
       opt_.tolerances ? *opt_.tolerances
                       : (opt_.quick ? std::vector<double>{1e-2, 1e-3} : std::vector<double>{1e-2, 3e-3, 1e-3, 3e-4, 1e-4});
   {
-    adaptive_max_ = grid.back();
-    adaptive_min_ = grid.front() / 100;
+    // The scene's adaptive settings (time.max, min, initial), or the defaults a scene gets
+    // with `step: adaptive` alone.
+    try {
+      std::vector<std::string> o = opt_.overrides;
+      o.push_back("time.step=adaptive");
+      const config::Scene s = config::load_scene(variant_files_[0], o);
+      adaptive_max_ = scene_adaptive_ ? scene_adaptive_->max : s.time.adaptive->max;
+      adaptive_min_ = scene_adaptive_ ? scene_adaptive_->min : s.time.adaptive->min;
+      adaptive_initial_ = scene_adaptive_ ? scene_adaptive_->initial : s.time.adaptive->initial;
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "mechsim bench: no adaptive points: %s\n", e.what());
+    }
     double h_own = grid.front();
     for (double h : grid)
       if (std::abs(std::log(h / h0_)) < std::abs(std::log(h_own / h0_))) h_own = h;
@@ -1126,7 +1171,18 @@ int Bench::run() {
     } else if (best >= 0) {
       adaptive_choice.back()["why"] = "shipped; also the best fixed-H max error at H " + time_text(h_own);
     }
-    if (tolerances.empty()) adaptive_choice = json::array();  // --tolerances none
+    if (tolerances.empty() || !(adaptive_max_ > 0)) adaptive_choice = json::array();  // --tolerances none
+    // Scales: the scene's; without any, each coupled field's range in the reference at the
+    // scene's H, as an engineer writes them after one run (docs/accuracy.md).
+    for (int v : chosen) {
+      if (scene_adaptive_ && !scene_adaptive_->scales.empty()) {
+        adaptive_scales_[v] = scene_adaptive_->scales;
+      } else {
+        adaptive_scales_[v] = reference_scales(v, h_own);
+        adaptive_scales_from_ = "reference range";
+      }
+    }
+    if (adaptive_choice.empty()) chosen.clear();
     for (int v : chosen)
       for (double tol : tolerances) adaptive_specs_.push_back({v, 0.0, "cvode_bdf", opt_.rtol, "adaptive", tol});
   }
@@ -1246,7 +1302,8 @@ int Bench::run() {
       {"rtol", opt_.rtol},
       {"time_max_s", adaptive_max_},
       {"time_min_s", adaptive_min_},
-      {"time_initial_s", adaptive_min_},
+      {"time_initial_s", adaptive_initial_},
+      {"scales_from", adaptive_scales_from_},
       {"variants", adaptive_choice},
       {"curves", json::array()}};
   if (tolerances.empty()) adaptive_vs_fixed["note"] = "no adaptive points (--tolerances none)";

@@ -21,17 +21,37 @@ NodeStepper::NodeStepper(PlannedNode& node, std::shared_ptr<const StepGrid> grid
     : node_(node), grid_(std::move(grid)), self_(self) {
   const models::Block& block = *node.block;
   if (grid_->is_adaptive()) {
+    // A block that neither integrates nor samples reads its inputs only at step ends: a
+    // Gauss-Seidel edge into it makes no error (the samples there are exact), and a Jacobi
+    // edge's error is all in its effect on the block's outputs.
+    const bool reads_only_at_step_ends = block.num_states() == 0 && !(block.sample_time() > 0);
+    const auto scale_of = [&](const std::string& key) {
+      for (const auto& [name, value] : grid_->adaptive_spec().scales)
+        if (name == key) return value;
+      return 0.0;
+    };
     std::vector<CouplingErrorEstimate::Edge> edges;
-    for (const auto& edge : node.inputs) {
+    effect_outputs_.assign(node.inputs.size(), {});
+    for (std::size_t i = 0; i < node.inputs.size(); ++i) {
+      const auto& edge = node.inputs[i];
       CouplingErrorEstimate::Edge e{edge.order, edge.reconstruction, {}, std::vector<double>(edge.type->fields.size(), 0.0)};
-      // A Gauss-Seidel edge into a block that neither integrates nor samples makes no coupling
-      // error: the block reads its inputs only at step ends, where the samples are exact.
-      const bool reads_only_at_step_ends = block.num_states() == 0 && !(block.sample_time() > 0);
-      if (!(edge.order == config::EdgeOrder::gauss_seidel && reads_only_at_step_ends))
+      for (std::size_t f = 0; f < edge.type->fields.size(); ++f) e.scales[f] = scale_of(edge.from + "." + edge.type->fields[f].name);
+      if (edge.order == config::EdgeOrder::jacobi && !node.cut) {
+        // The watched outputs (not flags and counts: unit "1") the edge's inputs reach directly.
+        for (const int o : node.watched_outputs) {
+          const auto& port = block.outputs()[static_cast<std::size_t>(o)];
+          if (port.unit == "1") continue;
+          bool reached = false;
+          for (const auto& [field, input] : edge.field_to_input)
+            reached = reached || std::find(port.feedthrough.begin(), port.feedthrough.end(), input) != port.feedthrough.end();
+          if (!reached) continue;
+          effect_outputs_[i].push_back(o);
+          e.outputs.push_back(static_cast<std::size_t>(o));
+          e.output_scales.push_back(scale_of(node.name() + "." + port.name));
+        }
+      }
+      if (!reads_only_at_step_ends)
         for (const auto& [field, input] : edge.field_to_input) e.fields.push_back(static_cast<std::size_t>(field));
-      for (const auto& [key, value] : grid_->adaptive_spec().scales)
-        for (std::size_t f = 0; f < edge.type->fields.size(); ++f)
-          if (key == edge.from + "." + edge.type->fields[f].name) e.scales[f] = value;
       edges.push_back(std::move(e));
     }
     estimate_.emplace(std::move(edges));
@@ -94,9 +114,23 @@ bool NodeStepper::proposal_due() const {
 StepProposal NodeStepper::propose() {
   if (!proposal_due()) throw std::logic_error("step proposal before the step's Jacobi inputs arrived");
   const config::AdaptiveStepSpec& spec = grid_->adaptive_spec();
-  for (std::size_t e = 0; e < channels_.size(); ++e)
-    if (channels_[e].order() == config::EdgeOrder::jacobi)
-      estimate_->received(e, k_, channels_[e].held_samples().at(k_));
+  for (std::size_t e = 0; e < channels_.size(); ++e) {
+    if (channels_[e].order() != config::EdgeOrder::jacobi) continue;
+    const std::vector<double>& sample = channels_[e].held_samples().at(k_);
+    const std::vector<int>& watched = effect_outputs_[e];
+    if (watched.empty()) {
+      estimate_->received(e, k_, sample);
+      continue;
+    }
+    // The outputs at t_k had the partner's sample been there instead of what was used.
+    effect_u_ = u_;
+    effect_y_.resize(y_.size());
+    for (const auto& [field, input] : node_.inputs[e].field_to_input) effect_u_[input] = sample[field];
+    node_.block->calc_outputs(time(), integrator_->state(), effect_u_, effect_y_);
+    effect_change_.resize(watched.size());
+    for (std::size_t j = 0; j < watched.size(); ++j) effect_change_[j] = effect_y_[watched[j]] - y_[watched[j]];
+    estimate_->received(e, k_, sample, y_, effect_change_);
+  }
   // Made at step k, for the step after the next, k+1 -> k+2 (t_k+1 is agreed already): the
   // proposals travel while the nodes take step k -> k+1, so no node waits for them.
   const double t_next = grid_->time(k_ + 1);

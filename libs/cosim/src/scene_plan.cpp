@@ -256,6 +256,19 @@ ScenePlan ScenePlan::build(const config::Scene& scene) {
     to.inputs.push_back(std::move(edge));
     ++from.subscriber_count;
   }
+  // The outputs that matter beyond their node: compared, or read by another participant.
+  for (auto& node : plan.nodes_) {
+    std::set<int> watched;
+    for (const auto& signal : scene.compare)
+      if (signal.participant == node.name())
+        if (const int o = node.block->output_index(signal.output); o >= 0) watched.insert(o);
+    for (const auto& other : plan.nodes_)
+      for (const auto& edge : other.inputs)
+        if (edge.from == node.name())
+          for (const auto& [field, input] : edge.field_to_input)
+            if (const int o = node.published_outputs.at(static_cast<std::size_t>(field)); o >= 0) watched.insert(o);
+    node.watched_outputs.assign(watched.begin(), watched.end());
+  }
   // The launcher's recorder reads too: a node starts only once its writer has matched it,
   // or the recording could miss the first steps (a match is seen by each side on its own).
   if (scene.record)

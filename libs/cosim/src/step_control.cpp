@@ -51,22 +51,22 @@ double longest_within(double k1, double dk, int q, double target) {
 
 }  // namespace
 
-void CouplingErrorEstimate::Channel::widen(std::span<const double> v) {
-  if (lo.size() != v.size()) {
-    lo.assign(v.size(), std::numeric_limits<double>::infinity());
-    hi.assign(v.size(), -std::numeric_limits<double>::infinity());
+void CouplingErrorEstimate::Channel::widen(std::span<const double> v, std::size_t offset) {
+  if (lo.size() < offset + v.size()) {
+    lo.resize(offset + v.size(), std::numeric_limits<double>::infinity());
+    hi.resize(offset + v.size(), -std::numeric_limits<double>::infinity());
   }
   for (std::size_t f = 0; f < v.size(); ++f)
     if (std::isfinite(v[f])) {
-      lo[f] = std::min(lo[f], v[f]);
-      hi[f] = std::max(hi[f], v[f]);
+      lo[offset + f] = std::min(lo[offset + f], v[f]);
+      hi[offset + f] = std::max(hi[offset + f], v[f]);
     }
 }
 
-double CouplingErrorEstimate::Channel::scale(std::size_t f) const {
-  const double least = f < least_scale.size() ? least_scale[f] : 0.0;
-  if (f >= lo.size() || !(hi[f] >= lo[f])) return least;
-  return std::max(least, std::max(hi[f] - lo[f], std::max(std::abs(lo[f]), std::abs(hi[f]))));
+double CouplingErrorEstimate::Channel::scale(std::size_t entry) const {
+  const double least = entry < least_scale.size() ? least_scale[entry] : 0.0;
+  if (entry >= lo.size() || !(hi[entry] >= lo[entry])) return least;
+  return std::max(least, std::max(hi[entry] - lo[entry], std::max(std::abs(lo[entry]), std::abs(hi[entry]))));
 }
 
 double CouplingErrorEstimate::Channel::instant(std::uint64_t k) const {
@@ -84,13 +84,15 @@ void CouplingErrorEstimate::Channel::measured(std::uint64_t k, std::span<const d
     before.reset();
     return;
   }
-  Measured m{k, a, std::vector<double>(difference.size(), 0.0)};
+  Measured m{k, a, std::vector<double>(topic_size + outputs.size(), 0.0)};
   const double a_q = std::pow(a, error_order);
-  for (std::size_t f : fields) {
-    if (f >= difference.size()) continue;
-    const double s = scale(f);
-    if (s > 0 && std::isfinite(difference[f])) m.k[f] = difference[f] / s / a_q;
-  }
+  const auto entry = [&](std::size_t e) {
+    const double s = scale(e);
+    if (e < difference.size() && s > 0 && std::isfinite(difference[e])) m.k[e] = difference[e] / s / a_q;
+  };
+  for (std::size_t f : fields)
+    if (f < topic_size) entry(f);
+  for (std::size_t j = 0; j < outputs.size(); ++j) entry(topic_size + j);
   before = std::move(last);
   last = std::move(m);
 }
@@ -104,7 +106,12 @@ CouplingErrorEstimate::CouplingErrorEstimate(std::vector<Edge> edges) {
     // quadratic 3 samples before t_k.
     c.reaches_back = edge.order == config::EdgeOrder::gauss_seidel ? 2 : c.error_order;
     c.fields = std::move(edge.fields);
+    c.topic_size = edge.scales.size();
+    c.outputs = std::move(edge.outputs);
     c.least_scale = std::move(edge.scales);
+    c.least_scale.resize(c.topic_size + c.outputs.size(), 0.0);
+    for (std::size_t j = 0; j < c.outputs.size() && j < edge.output_scales.size(); ++j)
+      c.least_scale[c.topic_size + j] = edge.output_scales[j];
     channels_.push_back(std::move(c));
   }
 }
@@ -112,6 +119,7 @@ CouplingErrorEstimate::CouplingErrorEstimate(std::vector<Edge> edges) {
 void CouplingErrorEstimate::used_at_step_end(std::size_t edge, std::uint64_t k, double t_k, std::span<const double> values,
                                              bool event) {
   Channel& c = channels_.at(edge);
+  if (c.topic_size < values.size()) c.topic_size = values.size();
   c.widen(values);
   if (!c.instants.empty() && k != c.instants.back().first + 1) {  // not consecutive (a restore)
     c.instants.clear();
@@ -139,13 +147,23 @@ void CouplingErrorEstimate::used_at_step_end(std::size_t edge, std::uint64_t k, 
   c.measured(k, d);
 }
 
-void CouplingErrorEstimate::received(std::size_t edge, std::uint64_t k, std::span<const double> values) {
+void CouplingErrorEstimate::received(std::size_t edge, std::uint64_t k, std::span<const double> values,
+                                     std::span<const double> outputs, std::span<const double> output_change) {
   Channel& c = channels_.at(edge);
   if (c.order != config::EdgeOrder::jacobi) return;
+  if (c.topic_size < values.size()) c.topic_size = values.size();
   c.widen(values);
   if (c.used_step != k || c.used.size() != values.size()) return;
-  std::vector<double> d(values.size(), 0.0);
-  for (std::size_t f = 0; f < d.size(); ++f) d[f] = values[f] - c.used[f];
+  std::vector<double> d(c.topic_size + c.outputs.size(), 0.0);
+  for (std::size_t f = 0; f < values.size(); ++f) d[f] = values[f] - c.used[f];
+  if (!output_change.empty()) {
+    std::vector<double> watched(c.outputs.size(), 0.0);
+    for (std::size_t j = 0; j < c.outputs.size(); ++j) {
+      watched[j] = c.outputs[j] < outputs.size() ? outputs[c.outputs[j]] : 0.0;
+      if (j < output_change.size()) d[c.topic_size + j] = output_change[j];
+    }
+    c.widen(watched, c.topic_size);
+  }
   c.measured(k, d);
 }
 
@@ -160,14 +178,16 @@ std::optional<CouplingErrorEstimate::Result> CouplingErrorEstimate::at(std::uint
     const double target = kSafety * tolerance;
     double ratio = 0.0;
     double longest = std::numeric_limits<double>::infinity();
-    for (std::size_t f : c.fields) {
-      if (f >= m.k.size()) continue;
-      ratio = std::max(ratio, std::abs(m.k[f]) * std::pow(m.length, q) / tolerance);
+    const auto entry = [&](std::size_t e) {
+      if (e >= m.k.size()) return;
+      ratio = std::max(ratio, std::abs(m.k[e]) * std::pow(m.length, q) / tolerance);
       // K per unit time between the two steps' midpoints, carried to the next step's start.
-      const double dk = trend ? (m.k[f] - c.before->k[f]) / ((m.length + c.before->length) / 2) : 0.0;
-      const double k1 = m.k[f] + dk * (m.length / 2 + current_h);
+      const double dk = trend && e < c.before->k.size() ? (m.k[e] - c.before->k[e]) / ((m.length + c.before->length) / 2) : 0.0;
+      const double k1 = m.k[e] + dk * (m.length / 2 + current_h);
       longest = std::min(longest, longest_within(std::abs(k1), std::abs(dk), q, target));
-    }
+    };
+    for (std::size_t f : c.fields) entry(f);
+    for (std::size_t j = 0; j < c.outputs.size(); ++j) entry(c.topic_size + j);
     if (!out) {
       out = Result{ratio, q, longest};
       continue;

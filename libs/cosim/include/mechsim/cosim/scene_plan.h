@@ -52,6 +52,10 @@ struct PlannedNode {
   int subscriber_count = 0;             // participants that read `topic`
   bool recorded = false;                // the launcher's recorder reads `topic` too (scene `record:`)
   std::optional<PlannedCut> cut;        // interface-Jacobian cut, if this node is on one
+  // The outputs whose error matters beyond this node: compared with the reference (scene
+  // `compare:`) or read by another participant. The adaptive step weighs a Jacobi input's
+  // error by its effect on these (step_control.h).
+  std::vector<int> watched_outputs;
   const std::string& name() const { return spec->name; }
 };
 

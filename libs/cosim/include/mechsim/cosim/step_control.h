@@ -60,14 +60,22 @@ class CouplingErrorEstimate {
     config::Reconstruction reconstruction;
     std::vector<std::size_t> fields;
     std::vector<double> scales = {};  // per topic field: the least scale (time.scales), 0: none
+    // Jacobi: the node's outputs the edge's inputs reach directly (feedthrough) and whose
+    // error matters beyond the node (PlannedNode::watched_outputs), with their least scales:
+    // the edge's error is also measured as its effect on them.
+    std::vector<std::size_t> outputs = {};
+    std::vector<double> output_scales = {};
   };
   explicit CouplingErrorEstimate(std::vector<Edge> edges);
   // After step k-1 -> k: what channel `edge` reconstructed at t_k (on a Gauss-Seidel edge
   // that is the step-k sample itself). `event`: t_k is a discontinuity, so no step whose
   // reconstruction reaches back across it measures the smooth signal after it.
   void used_at_step_end(std::size_t edge, std::uint64_t k, double t_k, std::span<const double> values, bool event = false);
-  // The partner's step-k sample of a Jacobi edge, once it is there.
-  void received(std::size_t edge, std::uint64_t k, std::span<const double> values);
+  // The partner's step-k sample of a Jacobi edge, once it is there; with the node's outputs
+  // at t_k and, per Edge::outputs entry, how much they change when the sample replaces what
+  // the node used (empty: no outputs measured).
+  void received(std::size_t edge, std::uint64_t k, std::span<const double> values,
+                std::span<const double> outputs = {}, std::span<const double> output_change = {});
   struct Result {
     double ratio;    // e / tol of the step that ended at t_k, the worst channel's
     int order;       // q of the channel that decides the next step
@@ -87,7 +95,8 @@ class CouplingErrorEstimate {
   struct Measured {
     std::uint64_t step;      // the step k-1 -> k that ended at t_k
     double length;           // t_k - t_k-1
-    std::vector<double> k;   // per topic field: signed e / scale / length^q (0: not measured)
+    // Signed e / scale / length^q (0: not measured), per topic field, then per output.
+    std::vector<double> k;
   };
   struct Channel {
     config::EdgeOrder order;
@@ -102,11 +111,14 @@ class CouplingErrorEstimate {
     // Gauss-Seidel: the samples of the last three steps (oldest first).
     std::vector<std::vector<double>> history;
     std::optional<Measured> last, before;
-    std::vector<double> lo, hi;               // per field, over every value seen
-    std::vector<double> least_scale;          // per field (time.scales), may be empty
-    void widen(std::span<const double> v);
-    double scale(std::size_t f) const;
+    std::size_t topic_size = 0;               // fields of the topic (the first entries of K)
+    std::vector<std::size_t> outputs;         // Edge::outputs
+    std::vector<double> lo, hi;               // per topic field then per output, over every value seen
+    std::vector<double> least_scale;          // likewise (time.scales), 0: none
+    void widen(std::span<const double> v, std::size_t offset = 0);
+    double scale(std::size_t entry) const;
     double instant(std::uint64_t k) const;    // NaN when not kept
+    // `difference`: per topic field, then per output (or only the fields).
     void measured(std::uint64_t k, std::span<const double> difference);
   };
   std::vector<Channel> channels_;
