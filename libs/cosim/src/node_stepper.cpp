@@ -152,6 +152,7 @@ StepProposal NodeStepper::propose() {
     p.event_time = recorded;
     p.event = recorded == event;
   }
+  if (state_event_step_ == k_) p.state_event_time = state_event_time_;
   proposed_step_ = k_;
   add_proposal(self_, k_, p);
   return p;
@@ -179,6 +180,7 @@ void NodeStepper::agree_if_complete() {
     const std::uint64_t n = grid_->steps();  // t_n is the last instant known
     if (n == 0 || grid_->at_end(n) || !agreement_->complete(n - 1)) break;
     const AgreedStep a = agreement_->agreed(n - 1, grid_->time(n));
+    if (a.after_state_event) estimate_->discontinuity_at(n - 1);
     grid_->extend(n, a.t_next, a.event);
     agreement_->discard_before(n);
   }
@@ -278,6 +280,12 @@ void NodeStepper::step(std::vector<double>& topic_values) {
     integrator_->mark_discontinuity();  // the reconstructed inputs start afresh each step
     integrator_->advance_to(t_next, inputs);
   }
+  // A root found inside the step (lift-off, landing): the adaptive step is told (propose).
+  for (auto& found : integrator_->take_events()) {
+    state_event_step_ = k + 1;
+    state_event_time_ = found.t;
+    found_events_.push_back(found);
+  }
   for (std::size_t e = 0; e < channels_.size(); ++e) {
     channels_[e].values_at_step_end(k, scratch_);
     for (const auto& [field, input] : node_.inputs[e].field_to_input) u_[input] = scratch_[field];
@@ -293,7 +301,11 @@ void NodeStepper::step(std::vector<double>& topic_values) {
 }
 
 std::vector<solve::EventRecord> NodeStepper::take_events() {
-  return integrator_ ? integrator_->take_events() : std::vector<solve::EventRecord>{};
+  std::vector<solve::EventRecord> out = std::move(found_events_);
+  found_events_.clear();
+  if (integrator_)
+    for (auto& e : integrator_->take_events()) out.push_back(e);
+  return out;
 }
 
 std::vector<double> NodeStepper::coupled_state() const {

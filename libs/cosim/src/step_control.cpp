@@ -167,6 +167,14 @@ void CouplingErrorEstimate::received(std::size_t edge, std::uint64_t k, std::spa
   c.measured(k, d);
 }
 
+void CouplingErrorEstimate::discontinuity_at(std::uint64_t k) {
+  for (Channel& c : channels_) {
+    c.last_event = std::max(c.last_event, k);
+    c.last.reset();
+    c.before.reset();
+  }
+}
+
 std::optional<CouplingErrorEstimate::Result> CouplingErrorEstimate::at(std::uint64_t k, double tolerance,
                                                                      double current_h) const {
   std::optional<Result> out;
@@ -255,8 +263,16 @@ AgreedStep StepAgreement::agreed(std::uint64_t k, double t) const {
   }
   // The limit is an event when any proposal calls it one.
   bool event = false;
-  for (const auto& [participant, p] : proposals) event = event || (p.event && p.event_time == limit);
-  return end_of_step(t, h, limit, event, spec_, end_);
+  bool state_event = false;
+  for (const auto& [participant, p] : proposals) {
+    event = event || (p.event && p.event_time == limit);
+    state_event = state_event || std::isfinite(p.state_event_time);
+  }
+  // A state event inside the step before: what follows it is new, as after an event.
+  if (state_event) h = std::min(h, spec_.initial);
+  AgreedStep a = end_of_step(t, h, limit, event, spec_, end_);
+  a.after_state_event = state_event;
+  return a;
 }
 
 void StepAgreement::discard_before(std::uint64_t k) {

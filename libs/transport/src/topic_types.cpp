@@ -59,7 +59,8 @@ const TopicType kCouplingPrediction = coupling_prediction_type();
 const TopicType kStepProposal{"mechsim::msg::StepProposal", "step.idl",
                               {bounded("step_length", 0.0, std::numeric_limits<double>::infinity(), "s"), flag("event"),
                                unbounded("event_time", "s"),
-                               bounded("error_estimate", 0.0, std::numeric_limits<double>::infinity(), "1")}};
+                               bounded("error_estimate", 0.0, std::numeric_limits<double>::infinity(), "1"),
+                               unbounded("state_event_time", "s")}};
 }  // namespace
 
 const std::vector<const TopicType*>& all_topic_types() {

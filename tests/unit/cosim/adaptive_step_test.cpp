@@ -266,6 +266,28 @@ TEST(AdaptiveRun, TheRatioScheduleLandsOnAStepBoundary) {
   expect_events_landed(run.plan(), *run.plan().grid());
 }
 
+// A state event (a root the integrator finds: the flexible follower's lift-off and landing)
+// cannot be landed on: it is found by taking the step that contains it. The node reports it
+// with its next proposal, and the step after the next one (the first the proposals still
+// set) starts again from `initial`.
+TEST(AdaptiveRun, AStateEventFoundInsideAStepRestartsTheFirstStepStillToBeAgreed) {
+  SteppedRun run(testing::shipped_scene("cam_lift_off.yaml"),
+                 {"participants.cam.params.speed=150 rpm", "time.end=0.3 s", "time.step=adaptive", "time.tolerance=1e-3", "time.max=4 ms",
+                  "time.min=1 us", "time.initial=5 us"});
+  const std::vector<double> t = stepped_instants(run);
+  std::vector<double> found;
+  for (const auto& node : run.plan().nodes())
+    for (const auto& e : node.block->take_event_log())
+      if (e.kind == "lift_off" || e.kind == "landing") found.push_back(e.t);
+  ASSERT_GE(found.size(), 3u) << "at 150 rpm the follower leaves the cam and lands again";
+  for (const double te : found) {
+    std::size_t k = 1;
+    while (k < t.size() && t[k] < te) ++k;  // t_k-1 < te <= t_k
+    ASSERT_LT(k + 2, t.size()) << te;
+    EXPECT_LE(t[k + 2] - t[k + 1], 5e-6 * (1 + 1e-9)) << "event at " << te << " in the step " << t[k - 1] << " -> " << t[k];
+  }
+}
+
 std::string slurp(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
   std::stringstream s;

@@ -1,6 +1,6 @@
 // StepProposal (idl/step.idl) through every backend of this build, typed writer to typed
 // reader: the header and every field arrive intact, the boolean as 0/1 and the NaN that
-// event_time and error_estimate carry by design included.
+// event_time, error_estimate and state_event_time carry by design included.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -49,10 +49,12 @@ TEST_P(StepProposalRoundTrip, ValuesArriveIntactNaNIncluded) {
   first[type->field_index("event")] = 0.0;
   first[type->field_index("event_time")] = nan;
   first[type->field_index("error_estimate")] = nan;
+  first[type->field_index("state_event_time")] = nan;
   second[type->field_index("step_length")] = 1.0 / 3.0;
   second[type->field_index("event")] = 1.0;
   second[type->field_index("event_time")] = 0.123456789012345;
   second[type->field_index("error_estimate")] = 0.75;
+  second[type->field_index("state_event_time")] = 0.0071234567890123;
   writer->write({42, 7, 0.007}, first);
   writer->write({42, 8, 0.00725}, second);
 
@@ -67,6 +69,7 @@ TEST_P(StepProposalRoundTrip, ValuesArriveIntactNaNIncluded) {
   EXPECT_EQ(got[type->field_index("event")], 0.0);
   EXPECT_TRUE(std::isnan(got[type->field_index("event_time")]));
   EXPECT_TRUE(std::isnan(got[type->field_index("error_estimate")]));
+  EXPECT_TRUE(std::isnan(got[type->field_index("state_event_time")]));
 
   ASSERT_TRUE(wait_until(*b, [&] { return reader->take(h, got); }));
   EXPECT_EQ(h.step, 8u);

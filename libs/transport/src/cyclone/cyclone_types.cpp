@@ -95,7 +95,8 @@ std::vector<CycloneType> make_bindings() {
 #undef MECHSIM_LEVELS
   b.push_back({find_topic_type("StepProposal"), &mechsim_msg_StepProposal_desc, sizeof(mechsim_msg_StepProposal),
                {MECHSIM_F64(mechsim_msg_StepProposal, step_length), MECHSIM_FLAG(mechsim_msg_StepProposal, event),
-                MECHSIM_F64(mechsim_msg_StepProposal, event_time), MECHSIM_F64(mechsim_msg_StepProposal, error_estimate)}});
+                MECHSIM_F64(mechsim_msg_StepProposal, event_time), MECHSIM_F64(mechsim_msg_StepProposal, error_estimate),
+                MECHSIM_F64(mechsim_msg_StepProposal, state_event_time)}});
   for (const auto& binding : b)
     if (binding.type == nullptr || binding.slots.size() != binding.type->fields.size())
       throw std::logic_error("cyclone binding does not match topic_types.cpp");

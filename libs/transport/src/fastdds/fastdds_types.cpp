@@ -152,7 +152,8 @@ std::vector<std::unique_ptr<FastType>> make_bindings() {
   b.push_back(std::make_unique<Binding<StepProposal, StepProposalPubSubType>>(
       "StepProposal", std::vector<Slot<StepProposal>>{
                           MECHSIM_F64(StepProposal, step_length), MECHSIM_FLAG(StepProposal, event),
-                          MECHSIM_F64(StepProposal, event_time), MECHSIM_F64(StepProposal, error_estimate)}));
+                          MECHSIM_F64(StepProposal, event_time), MECHSIM_F64(StepProposal, error_estimate),
+                          MECHSIM_F64(StepProposal, state_event_time)}));
   return b;
 }
 #undef MECHSIM_F64

@@ -144,6 +144,11 @@ class NodeStepper {
   // Edge::outputs), and scratch for measuring that effect.
   std::vector<std::vector<int>> effect_outputs_;
   std::vector<double> effect_u_, effect_y_, effect_change_;
+  // Roots the integrator found while stepping (take_events), and the last of them with the
+  // step it ended (a state event the next proposal reports).
+  std::vector<solve::EventRecord> found_events_;
+  std::uint64_t state_event_step_ = UINT64_MAX;
+  double state_event_time_ = 0.0;
 };
 
 }  // namespace mechsim::cosim

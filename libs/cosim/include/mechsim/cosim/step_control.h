@@ -39,9 +39,15 @@ struct StepProposal {
   double event_time = std::numeric_limits<double>::infinity();
   bool event = false;         // event_time is a discontinuity (the row logged there is after it)
   double error_estimate = 0.0;  // e / tol of the step before (NaN when none yet)
+  // A state event (a root the node's integrator found: lift-off, landing) inside the step
+  // that ended at t_k (NaN: none). It cannot be landed on (it was found only by taking the
+  // step), so it is handled at the next step the proposals still set: that one starts again
+  // from `initial`, and no node measures its coupling error across the event.
+  double state_event_time = std::numeric_limits<double>::quiet_NaN();
   bool operator==(const StepProposal& o) const {
-    const bool same_estimate = error_estimate == o.error_estimate || (error_estimate != error_estimate && o.error_estimate != o.error_estimate);
-    return step_length == o.step_length && event == o.event && event_time == o.event_time && same_estimate;
+    const auto same = [](double a, double b) { return a == b || (a != a && b != b); };
+    return step_length == o.step_length && event == o.event && event_time == o.event_time && same(error_estimate, o.error_estimate) &&
+           same(state_event_time, o.state_event_time);
   }
 };
 
@@ -49,6 +55,7 @@ struct StepProposal {
 struct AgreedStep {
   double t_next = 0.0;
   bool event = false;
+  bool after_state_event = false;  // a proposal reported a state event: the step starts again from `initial`
 };
 
 class CouplingErrorEstimate {
@@ -83,6 +90,9 @@ class CouplingErrorEstimate {
     // controller's safety times the tolerance (+inf: no channel limits it).
     double longest;
   };
+  // A discontinuity inside the step that ended at t_k (a state event): no step whose
+  // reconstruction reaches back before t_k is measured.
+  void discontinuity_at(std::uint64_t k);
   // nullopt when no channel can tell yet (the first steps, and the steps just after an event).
   // The prediction: per field, the measured error of the step k-1 -> k (length a) as
   // e = K a^q, K's trend from the step before (dK/dt between their midpoints), K carried to
