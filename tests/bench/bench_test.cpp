@@ -149,7 +149,23 @@ TEST_F(BenchQuick, AdaptivePointsAtEachQuickTolerance) {
   for (const auto& c : a["curves"]) {
     EXPECT_EQ(c["points"].size(), 2u);
     EXPECT_TRUE(c.contains("best_factor") && c.contains("target_5x_met") && c["rms"].contains("best_factor")) << c.dump();
+    EXPECT_TRUE(c.contains("best_factor_at_equal_steps")) << c.dump();
+    // The factor at equal steps is the same scheme's fixed-H error at the point's steps over
+    // the point's error (null where the steps lie outside the fixed rows').
+    for (const auto& p : c["points"]) {
+      ASSERT_TRUE(p.contains("factor_at_equal_steps")) << p.dump();
+      if (!p["factor_at_equal_steps"].is_number()) continue;
+      EXPECT_NEAR(p["factor_at_equal_steps"].get<double>(),
+                  p["fixed_error_same_scheme_at_equal_steps"].get<double>() / p["adaptive_error"].get<double>(), 1e-12)
+          << p.dump();
+    }
   }
+  // Without `scales:` in the scene, the adaptive rows take each coupled field's reference range.
+  for (const auto& r : doc()["rows"])
+    if (r.contains("tolerance")) {
+      EXPECT_EQ(r["scales_from"], "reference range") << r.dump();
+      EXPECT_FALSE(r["scales"].empty()) << r.dump();
+    }
   EXPECT_NE(result_->output.find("vs best fixed H at equal wall time"), std::string::npos) << result_->output;
   EXPECT_NE(result_->output.find("tol 1e-3"), std::string::npos) << result_->output;
 }
