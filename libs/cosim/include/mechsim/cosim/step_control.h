@@ -4,15 +4,17 @@
 //    took, from its own inputs: on a Jacobi edge the value it reconstructed at t_k (held or
 //    extrapolated) against the partner's step-k sample that has now arrived; on a
 //    Gauss-Seidel edge the step-k sample against the line through the two samples before it
-//    (the curvature its linear interpolation missed). Each field's difference is divided by
-//    the field's scale (the largest of its range and its magnitude so far).
-//    The estimate predicts the error of a later step from the measured one (e = K H^q, q the
-//    power of H it falls with: hold 1, linear and Gauss-Seidel 2, quadratic 3) and K's trend.
+//    (the curvature its linear interpolation missed); on a Jacobi edge also the change of the
+//    node's watched outputs had the partner's sample been used (only that, in a block without
+//    states). Each difference is divided by its scale (the largest of its range and its
+//    magnitude so far, and its time.scales entry). The estimate predicts the error of a
+//    later step from the measured one (e = K H^q, q the power of H it falls with: hold 1,
+//    linear and Gauss-Seidel 2, quadratic 3) and K's trend.
 //  - propose_step: the controller. The step after the one under way (H_k) is the longest
-//    whose predicted error is 0.8 tol, at most 1.5 H_k and at least H_k / 5, inside [min, max].
+//    whose predicted error is 0.8 tol, at most 2 H_k and at least H_k / 5, inside [min, max].
 //    No step is redone (that would need every node to roll back): the controller is kept
-//    conservative instead (the 0.8 and the 1.5), and a step whose estimate exceeds the
-//    tolerance only makes the next one shorter.
+//    conservative instead (the 0.8, the trend, the factor 2), and a step whose estimate
+//    exceeds the tolerance only makes the next one shorter.
 //  - StepAgreement: every node's proposal made at step k; once all are there, t_k+2 is
 //    t_k+1 plus the smallest proposed length, or the earliest discontinuity a proposal
 //    announces when that comes first, or the end. One step ahead, so that the proposals
@@ -136,7 +138,7 @@ class CouplingErrorEstimate {
 
 // The controller's proposal made at step k, for the step after the one under way (of length
 // `current_h`; 0 after a restart: the spec's initial step): the estimate's longest step,
-// within [current_h / 5, 1.5 current_h] and [min, max] (nullopt: keep the step). The
+// within [current_h / 5, 2 current_h] and [min, max] (nullopt: keep the step). The
 // scheduled discontinuities of the grid are landed on by the caller.
 StepProposal propose_step(const config::AdaptiveStepSpec& spec, double current_h,
                           const std::optional<CouplingErrorEstimate::Result>& estimate);
