@@ -31,9 +31,7 @@ NodeStepper::NodeStepper(PlannedNode& node, std::shared_ptr<const StepGrid> grid
       return 0.0;
     };
     std::vector<CouplingErrorEstimate::Edge> edges;
-    effect_outputs_.assign(node.inputs.size(), {});
-    for (std::size_t i = 0; i < node.inputs.size(); ++i) {
-      const auto& edge = node.inputs[i];
+    for (const auto& edge : node.inputs) {
       CouplingErrorEstimate::Edge e{edge.order, edge.reconstruction, {}, std::vector<double>(edge.type->fields.size(), 0.0)};
       for (std::size_t f = 0; f < edge.type->fields.size(); ++f) e.scales[f] = scale_of(edge.from + "." + edge.type->fields[f].name);
       if (edge.order == config::EdgeOrder::jacobi && !node.cut) {
@@ -45,7 +43,6 @@ NodeStepper::NodeStepper(PlannedNode& node, std::shared_ptr<const StepGrid> grid
           for (const auto& [field, input] : edge.field_to_input)
             reached = reached || std::find(port.feedthrough.begin(), port.feedthrough.end(), input) != port.feedthrough.end();
           if (!reached) continue;
-          effect_outputs_[i].push_back(o);
           e.outputs.push_back(static_cast<std::size_t>(o));
           e.output_scales.push_back(scale_of(node.name() + "." + port.name));
         }
@@ -117,7 +114,7 @@ StepProposal NodeStepper::propose() {
   for (std::size_t e = 0; e < channels_.size(); ++e) {
     if (channels_[e].order() != config::EdgeOrder::jacobi) continue;
     const std::vector<double>& sample = channels_[e].held_samples().at(k_);
-    const std::vector<int>& watched = effect_outputs_[e];
+    const std::vector<std::size_t>& watched = estimate_->outputs(e);
     if (watched.empty()) {
       estimate_->received(e, k_, sample);
       continue;

@@ -106,7 +106,9 @@ CouplingErrorEstimate::CouplingErrorEstimate(std::vector<Edge> edges) {
     // quadratic 3 samples before t_k.
     c.reaches_back = edge.order == config::EdgeOrder::gauss_seidel ? 2 : c.error_order;
     c.fields = std::move(edge.fields);
+    // The topic's fields come first in K (their count from the scales, or the fields used).
     c.topic_size = edge.scales.size();
+    for (std::size_t f : c.fields) c.topic_size = std::max(c.topic_size, f + 1);
     c.outputs = std::move(edge.outputs);
     c.least_scale = std::move(edge.scales);
     c.least_scale.resize(c.topic_size + c.outputs.size(), 0.0);
@@ -119,8 +121,7 @@ CouplingErrorEstimate::CouplingErrorEstimate(std::vector<Edge> edges) {
 void CouplingErrorEstimate::used_at_step_end(std::size_t edge, std::uint64_t k, double t_k, std::span<const double> values,
                                              bool event) {
   Channel& c = channels_.at(edge);
-  if (c.topic_size < values.size()) c.topic_size = values.size();
-  c.widen(values);
+  c.widen(values.first(std::min(values.size(), c.topic_size)));
   if (!c.instants.empty() && k != c.instants.back().first + 1) {  // not consecutive (a restore)
     c.instants.clear();
     c.history.clear();
@@ -151,11 +152,10 @@ void CouplingErrorEstimate::received(std::size_t edge, std::uint64_t k, std::spa
                                      std::span<const double> outputs, std::span<const double> output_change) {
   Channel& c = channels_.at(edge);
   if (c.order != config::EdgeOrder::jacobi) return;
-  if (c.topic_size < values.size()) c.topic_size = values.size();
-  c.widen(values);
+  c.widen(values.first(std::min(values.size(), c.topic_size)));
   if (c.used_step != k || c.used.size() != values.size()) return;
   std::vector<double> d(c.topic_size + c.outputs.size(), 0.0);
-  for (std::size_t f = 0; f < values.size(); ++f) d[f] = values[f] - c.used[f];
+  for (std::size_t f = 0; f < values.size() && f < c.topic_size; ++f) d[f] = values[f] - c.used[f];
   if (!output_change.empty()) {
     std::vector<double> watched(c.outputs.size(), 0.0);
     for (std::size_t j = 0; j < c.outputs.size(); ++j) {
@@ -186,9 +186,10 @@ std::optional<CouplingErrorEstimate::Result> CouplingErrorEstimate::at(std::uint
     const double target = kSafety * tolerance;
     double ratio = 0.0;
     double longest = std::numeric_limits<double>::infinity();
+    const double a_q = std::pow(m.length, q);
     const auto entry = [&](std::size_t e) {
       if (e >= m.k.size()) return;
-      ratio = std::max(ratio, std::abs(m.k[e]) * std::pow(m.length, q) / tolerance);
+      ratio = std::max(ratio, std::abs(m.k[e]) * a_q / tolerance);
       // K per unit time between the two steps' midpoints, carried to the next step's start.
       const double dk = trend && e < c.before->k.size() ? (m.k[e] - c.before->k[e]) / ((m.length + c.before->length) / 2) : 0.0;
       const double k1 = m.k[e] + dk * (m.length / 2 + current_h);

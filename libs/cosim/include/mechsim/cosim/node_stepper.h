@@ -140,9 +140,7 @@ class NodeStepper {
   std::optional<CouplingErrorEstimate> estimate_;
   std::optional<StepAgreement> agreement_;
   std::uint64_t proposed_step_ = UINT64_MAX;  // the step this node proposed for last
-  // Per input edge: the watched outputs its error reaches directly (CouplingErrorEstimate::
-  // Edge::outputs), and scratch for measuring that effect.
-  std::vector<std::vector<int>> effect_outputs_;
+  // Scratch for measuring an input edge's effect on the watched outputs (propose).
   std::vector<double> effect_u_, effect_y_, effect_change_;
   // Roots the integrator found while stepping (take_events), and the last of them with the
   // step it ended (a state event the next proposal reports).

@@ -92,6 +92,8 @@ class CouplingErrorEstimate {
     // controller's safety times the tolerance (+inf: no channel limits it).
     double longest;
   };
+  // Edge::outputs of `edge`: the outputs whose change received() expects, in that order.
+  const std::vector<std::size_t>& outputs(std::size_t edge) const { return channels_.at(edge).outputs; }
   // A discontinuity inside the step that ended at t_k (a state event): no step whose
   // reconstruction reaches back before t_k is measured.
   void discontinuity_at(std::uint64_t k);
@@ -123,7 +125,7 @@ class CouplingErrorEstimate {
     // Gauss-Seidel: the samples of the last three steps (oldest first).
     std::vector<std::vector<double>> history;
     std::optional<Measured> last, before;
-    std::size_t topic_size = 0;               // fields of the topic (the first entries of K)
+    std::size_t topic_size = 0;               // fields of the topic (the first entries of K), fixed at construction
     std::vector<std::size_t> outputs;         // Edge::outputs
     std::vector<double> lo, hi;               // per topic field then per output, over every value seen
     std::vector<double> least_scale;          // likewise (time.scales), 0: none
