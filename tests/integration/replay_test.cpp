@@ -123,6 +123,32 @@ TEST_F(ReplayTest, AReplayOfAnAdaptiveRunStepsWhereTheRunStepped) {
   }
 }
 
+// The press line's cam is driven through the CVT: its law's joints and the follower's load
+// boundaries are predicted at run time from the shaft's motion (docs/accuracy.md, "Events").
+// The replayed cam predicts them from its recorded outputs, so the live nodes restart where
+// they restarted and repeat their outputs bit for bit.
+TEST_F(ReplayTest, AReplayedCamWhoseAnglesArePredictedAtRunTimeGivesTheSameBytes) {
+  const std::vector<std::string> adaptive{"--end", "0.3 s", "--set", "time.step=adaptive", "--set", "time.tolerance=1e-3"};
+  auto args = adaptive;
+  args.insert(args.end(), {"--set", "record=true"});
+  auto original = run(launch_args(scene_path("press_line.yaml"), "press_original", args), log("press_original"), 180);
+  ASSERT_EQ(original.exit_code, 0) << original.output;
+  const fs::path original_dir = run_folder("press_original");
+  args = adaptive;
+  args.insert(args.end(), {"--replay", "cam=" + (original_dir / "recording.mcap").string()});
+  auto replayed = run(launch_args(scene_path("press_line.yaml"), "press_replayed", args), log("press_replayed"), 180);
+  ASSERT_EQ(replayed.exit_code, 0) << replayed.output;
+  const auto steps = summary("press_original")["steps"].get<std::uint64_t>();
+  EXPECT_EQ(summary("press_replayed")["steps"].get<std::uint64_t>(), steps);
+  for (const char* node : {"cvt", "follower"}) {
+    SCOPED_TRACE(node);
+    const std::string a = slurp((original_dir / (std::string(node) + ".outputs.bin")).string());
+    const std::string b = slurp((run_folder("press_replayed") / (std::string(node) + ".outputs.bin")).string());
+    EXPECT_GT(a.size(), steps * 8);
+    EXPECT_TRUE(a == b) << "outputs of the live node differ from the original run";
+  }
+}
+
 TEST_F(ReplayTest, ARecordingThatDoesNotFitTheSceneIsRefusedBeforeAnyProcessStarts) {
   auto original = run(launch_args(scene_path("nc_slide_loop.yaml"), "short", {"--end", "5 ms", "--set", "record=true"}),
                       log("short"), 180);

@@ -53,6 +53,16 @@ NodeStepper::NodeStepper(PlannedNode& node, std::shared_ptr<const StepGrid> grid
     }
     estimate_.emplace(std::move(edges));
     agreement_.emplace(participants, grid_->adaptive_spec(), grid_->end());
+    for (const auto& events : node.run_time_angle_events) {
+      AngleWatch w;
+      w.angles = &events.angles;
+      w.own_outputs = events.own_outputs;
+      const auto index = [&](const char* name) { return w.own_outputs ? block.output_index(name) : block.input_index(name); };
+      w.angle = index("angle");
+      w.speed = index("speed");
+      w.acceleration = index("acceleration");
+      if (w.angle >= 0 && w.speed >= 0) angle_watches_.push_back(w);
+    }
   }
   for (const auto& edge : node.inputs) {
     InputChannel channel(edge.order, edge.reconstruction, grid_);
@@ -140,7 +150,7 @@ StepProposal NodeStepper::propose() {
   if (channels_.empty()) p.step_length = spec.max;  // no inputs: no coupling error of its own
   // The participants' scheduled discontinuities: every node knows them (the plan), every
   // node's proposal lands on the next one.
-  const double event = grid_->next_scheduled_event(t_next);
+  const double event = std::min(grid_->next_scheduled_event(t_next), next_angle_event(t_next));
   p.event_time = event;
   p.event = std::isfinite(event);
   // A replayed participant steps where the recorded run stepped (it has no opinion of its own).
@@ -153,6 +163,25 @@ StepProposal NodeStepper::propose() {
   proposed_step_ = k_;
   add_proposal(self_, k_, p);
   return p;
+}
+
+double NodeStepper::next_angle_event(double t_next) {
+  double first = std::numeric_limits<double>::infinity();
+  for (AngleWatch& w : angle_watches_) {
+    // The crossing announced with the last proposal set t_k+1: landed, not to be landed again.
+    if (w.announced.t == t_next) w.passed = w.announced.target;
+    const std::vector<double>& v = w.own_outputs ? y_ : u_;
+    const ShaftMotion motion{time(), v[static_cast<std::size_t>(w.angle)], v[static_cast<std::size_t>(w.speed)],
+                             w.acceleration >= 0 ? v[static_cast<std::size_t>(w.acceleration)] : 0.0};
+    // Not within `min` after t_k+1: that crossing is taken as on the boundary (no sliver of a step).
+    // No upper bound: the agreement lands on it only when it comes within the step, and the
+    // prediction is made afresh at every step (a replayed node, whose own step differs, finds
+    // the same crossing).
+    w.announced = predict_angle_event(motion, *w.angles, t_next + grid_->adaptive_spec().min,
+                                      std::numeric_limits<double>::infinity(), w.passed);
+    first = std::min(first, w.announced.t);
+  }
+  return first;
 }
 
 void NodeStepper::add_proposal(std::size_t participant, std::uint64_t step, const StepProposal& proposal) {

@@ -125,11 +125,15 @@ void ScenePlan::land_on_scheduled_events() {
              "at most " + std::to_string(kMaxScheduledEvents) + " discontinuities scheduled in the run (each lands a step), "
              "got more; check the speeds and the time section");
   };
-  for (const auto& node : nodes_) {
+  for (auto& node : nodes_) {
     for (double t : node.block->scheduled_events(time.start, time.end)) scheduled_events_.push_back({node.name(), t});
     too_many(node);
-    // An adaptive step also lands on a uniformly turning shaft's law joints (Block::angle_law_changes).
-    if (const auto rotation = node.block->uniform_rotation(); rotation && time.adaptive) {
+    // An adaptive step also lands on a uniformly turning shaft's law joints (Block::angle_law_changes),
+    // and on those of a shaft whose speed varies where the node predicts them at run time.
+    const auto rotation = node.block->uniform_rotation();
+    if (time.adaptive && !rotation && !node.block->angle_law_changes().empty() && node.block->output_index("angle") >= 0)
+      node.run_time_angle_events.push_back({true, node.block->angle_law_changes()});
+    if (rotation && time.adaptive) {
       const double two_pi = 2.0 * std::numbers::pi;
       for (double angle : node.block->angle_law_changes()) {
         const auto past = [&](double theta) { return theta - two_pi * std::floor(theta / two_pi) >= angle; };
@@ -146,7 +150,10 @@ void ScenePlan::land_on_scheduled_events() {
       for (const auto& [field, input] : edge.field_to_input) {
         if (input != angle_input || edge.type->fields[static_cast<std::size_t>(field)].name != "angle") continue;
         const auto rotation = this->node(edge.from).block->uniform_rotation();
-        if (!rotation) continue;
+        if (!rotation) {
+          if (time.adaptive) node.run_time_angle_events.push_back({false, angles});
+          continue;
+        }
         for (double angle : angles) {
           for (double t : times_of_angle(*rotation, angle, time.start, time.end,
                                          [&](double theta) { return node.block->angle_event_reached(theta, angle); },

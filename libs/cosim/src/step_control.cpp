@@ -22,27 +22,47 @@ int error_order(config::EdgeOrder order, config::Reconstruction r) {
   return 1;
 }
 
-double integer_power(double x, int q) {
-  double p = 1.0;
-  for (int i = 0; i < q; ++i) p *= x;
+
+// The reconstruction's error over a step of length h, per unit of the signal's derivative
+// of order q (the leading term of the interpolation remainder, without its 1/q!): the
+// distances from the reconstructed instant to the q samples it uses. A Jacobi edge
+// extrapolates from t_k over h with the samples at t_k, t_k - s1, t_k - s2 (hold: h; linear:
+// h (h + s1); quadratic: h (h + s1) (h + s2)); on unequal steps this is what makes the error
+// of a step depend on the step before it as well.
+double reach_product(double h, int q, const double* s) {
+  double p = h;
+  for (int i = 1; i < q; ++i) p *= h + s[i - 1];
   return p;
 }
 
-// The longest h with (k1 + dk h / 2) h^q <= target (k1, dk >= 0). The left side is
-// increasing and convex in h, so Newton's method from the smaller of the bounds each term
-// gives alone (which lies at or beyond the root) comes down on the root from above and
-// never overshoots it: a fixed count of iterations, the same doubles on every node.
-double longest_within(double k1, double dk, int q, double target) {
+// The longest h with (k1 + dk h / 2) w reach_product(h, q, s) <= target (k1, dk >= 0,
+// offsets s >= 0). The left side is increasing and convex in h, so Newton's method from a
+// bound at or beyond the root comes down on the root from above and never overshoots it:
+// a fixed count of iterations, the same doubles on every node. The bounds: h + s_i >= h
+// (the power alone), and h + s_i >= s_i (nearly linear where the offsets dominate).
+double longest_within(double k1, double dk, int q, const double* s, double w, double target) {
   const double c = dk / 2;
   const double inf = std::numeric_limits<double>::infinity();
   if (!(k1 > 0) && !(c > 0)) return inf;
-  const double by_k1 = k1 > 0 ? std::pow(target / k1, 1.0 / q) : inf;
-  const double by_trend = c > 0 ? std::pow(target / c, 1.0 / (q + 1)) : inf;
-  double h = std::min(by_k1, by_trend);
-  for (int i = 0; i < 8; ++i) {
-    const double hq = integer_power(h, q);
-    const double g = (k1 + c * h) * hq - target;
-    const double slope = k1 * q * hq / h + c * (q + 1) * hq;
+  target /= w;
+  double offsets = 1.0;
+  for (int i = 1; i < q; ++i) offsets *= s[i - 1];
+  double h = inf;
+  if (k1 > 0) {
+    h = std::min(h, std::pow(target / k1, 1.0 / q));
+    if (offsets > 0) h = std::min(h, target / (k1 * offsets));
+  }
+  if (c > 0) {
+    h = std::min(h, std::pow(target / c, 1.0 / (q + 1)));
+    if (offsets > 0) h = std::min(h, std::sqrt(target / (c * offsets)));
+  }
+  for (int i = 0; i < 12; ++i) {
+    // f = (k1 + c h) P(h), f' = c P + (k1 + c h) P', P' = P sum 1 / (h + s_i).
+    const double p = reach_product(h, q, s);
+    double dlogp = 1.0 / h;
+    for (int j = 1; j < q; ++j) dlogp += 1.0 / (h + s[j - 1]);
+    const double g = (k1 + c * h) * p - target;
+    const double slope = c * p + (k1 + c * h) * p * dlogp;
     if (!(g > 0) || !(slope > 0)) break;
     h -= g / slope;
   }
@@ -84,8 +104,16 @@ void CouplingErrorEstimate::Channel::measured(std::uint64_t k, std::span<const d
     before.reset();
     return;
   }
-  Measured m{k, a, std::vector<double>(topic_size + outputs.size(), 0.0)};
-  const double a_q = std::pow(a, error_order);
+  // The distances from t_k to the samples the reconstruction used (Gauss-Seidel: the line
+  // through the two samples before t_k, as a linear extrapolation).
+  double back[2] = {0.0, 0.0};
+  // (t_0 is never passed in: taken as a step of the same length, as on equal steps.)
+  for (int i = 1; i < error_order; ++i) {
+    const double d = instant(k) - instant(k - 1 - static_cast<std::uint64_t>(i));
+    back[i - 1] = d > 0 ? d : (i + 1) * a;
+  }
+  const double a_q = reach_product(a, error_order, back);
+  Measured m{k, a, std::vector<double>(topic_size + outputs.size(), 0.0), a_q};
   const auto entry = [&](std::size_t e) {
     const double s = scale(e);
     if (e < difference.size() && s > 0 && std::isfinite(difference[e])) m.k[e] = difference[e] / s / a_q;
@@ -186,14 +214,19 @@ std::optional<CouplingErrorEstimate::Result> CouplingErrorEstimate::at(std::uint
     const double target = kSafety * tolerance;
     double ratio = 0.0;
     double longest = std::numeric_limits<double>::infinity();
-    const double a_q = std::pow(m.length, q);
+    // The proposed step starts at t_k+1 = t_k + current_h. A Jacobi edge extrapolates over it
+    // from the samples at t_k+1, t_k and t_k-1; a Gauss-Seidel edge interpolates inside it, so
+    // its error does not depend on the steps before (2 h^2: equal steps' h (h + h)).
+    const bool jacobi = c.order == config::EdgeOrder::jacobi;
+    const double s[2] = {jacobi ? current_h : 0.0, jacobi ? current_h + m.length : 0.0};
+    const double w = jacobi ? 1.0 : 2.0;
     const auto entry = [&](std::size_t e) {
       if (e >= m.k.size()) return;
-      ratio = std::max(ratio, std::abs(m.k[e]) * a_q / tolerance);
+      ratio = std::max(ratio, std::abs(m.k[e]) * m.reach / tolerance);
       // K per unit time between the two steps' midpoints, carried to the next step's start.
       const double dk = trend && e < c.before->k.size() ? (m.k[e] - c.before->k[e]) / ((m.length + c.before->length) / 2) : 0.0;
       const double k1 = m.k[e] + dk * (m.length / 2 + current_h);
-      longest = std::min(longest, longest_within(std::abs(k1), std::abs(dk), q, target));
+      longest = std::min(longest, longest_within(std::abs(k1), std::abs(dk), q, s, w, target));
     };
     for (std::size_t f : c.fields) entry(f);
     for (std::size_t j = 0; j < c.outputs.size(); ++j) entry(c.topic_size + j);

@@ -5,12 +5,14 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
 #include <span>
 #include <vector>
 
+#include "mechsim/cosim/angle_event_prediction.h"
 #include "mechsim/cosim/coupling/interface_jacobian.h"
 #include "mechsim/cosim/input_channel.h"
 #include "mechsim/cosim/scene_plan.h"
@@ -147,6 +149,18 @@ class NodeStepper {
   std::vector<solve::EventRecord> found_events_;
   std::uint64_t state_event_step_ = UINT64_MAX;
   double state_event_time_ = 0.0;
+  // Run-time angle events (PlannedNode::run_time_angle_events): where the shaft's angle,
+  // speed and acceleration are (block inputs or own outputs; -1: none), the last crossing
+  // announced, and the last one landed on (so that one crossing is landed once).
+  struct AngleWatch {
+    const std::vector<double>* angles = nullptr;
+    bool own_outputs = false;
+    int angle = -1, speed = -1, acceleration = -1;
+    PredictedAngleEvent announced;
+    double passed = -std::numeric_limits<double>::infinity();
+  };
+  std::vector<AngleWatch> angle_watches_;
+  double next_angle_event(double t_next);
 };
 
 }  // namespace mechsim::cosim

@@ -56,6 +56,15 @@ struct PlannedNode {
   // `compare:`) or read by another participant. The adaptive step weighs a Jacobi input's
   // error by its effect on these (step_control.h).
   std::vector<int> watched_outputs;
+  // Adaptive step: angles [rad, in [0, 2 pi)] at which the block's law jumps or kinks that
+  // the plan could not turn into times, since the shaft's speed varies (angle_event_prediction.h).
+  // The node predicts them at run time from the shaft's `angle`, `speed` and `acceleration`:
+  // its block's inputs (a follower's load boundaries) or its own outputs (a cam's law joints).
+  struct RunTimeAngleEvents {
+    bool own_outputs = false;
+    std::vector<double> angles;
+  };
+  std::vector<RunTimeAngleEvents> run_time_angle_events;
   const std::string& name() const { return spec->name; }
 };
 

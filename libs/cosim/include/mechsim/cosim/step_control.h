@@ -109,8 +109,11 @@ class CouplingErrorEstimate {
   struct Measured {
     std::uint64_t step;      // the step k-1 -> k that ended at t_k
     double length;           // t_k - t_k-1
-    // Signed e / scale / length^q (0: not measured), per topic field, then per output.
+    // Signed e / scale / reach (0: not measured), per topic field, then per output.
     std::vector<double> k;
+    // The reconstruction's reach at t_k: length^q on equal steps; on unequal ones the product
+    // of the distances from t_k to the samples it used (length (length + t_k-1 - t_k-2) ...).
+    double reach = 0.0;
   };
   struct Channel {
     config::EdgeOrder order;
