@@ -76,7 +76,7 @@ SignalRef parse_signal_ref(const ConfigNode& node, const std::string& text) {
 }
 
 // `step: adaptive` with tolerance, min, max, initial (defaults: max = a hundredth of the run,
-// min = max / 1000, initial = min, tolerance 1e-3).
+// min = max / 10000, initial = min, tolerance 1e-3; docs/accuracy.md says why).
 AdaptiveStepSpec parse_adaptive_step(const ConfigNode& t, double start, double duration) {
   AdaptiveStepSpec a;
   if (t.has("tolerance")) {
@@ -84,7 +84,7 @@ AdaptiveStepSpec parse_adaptive_step(const ConfigNode& t, double start, double d
     if (!(a.tolerance > 0 && a.tolerance < 1)) t.child("tolerance").fail("expected a tolerance in (0, 1), e.g. 1e-4");
   }
   a.max = t.has("max") ? t.positive_quantity("max", dim::time) : duration / 100;
-  a.min = t.has("min") ? t.positive_quantity("min", dim::time) : a.max / 1000;
+  a.min = t.has("min") ? t.positive_quantity("min", dim::time) : a.max / 10000;
   if (!(a.min <= a.max)) t.child("min").fail("expected min <= max (" + std::to_string(a.max) + " s)");
   if (a.max > duration) t.child("max").fail("expected max <= end - start (" + std::to_string(duration) + " s)");
   // Each node keeps the instants of the run's steps (a double each): bounded here.
