@@ -102,6 +102,7 @@ void CouplingErrorEstimate::Channel::measured(std::uint64_t k, std::span<const d
   if (k < last_event + static_cast<std::uint64_t>(reaches_back) || !(a > 0)) {
     last.reset();
     before.reset();
+    older.reset();
     return;
   }
   // The distances from t_k to the samples the reconstruction used (Gauss-Seidel: the line
@@ -121,6 +122,7 @@ void CouplingErrorEstimate::Channel::measured(std::uint64_t k, std::span<const d
   for (std::size_t f : fields)
     if (f < topic_size) entry(f);
   for (std::size_t j = 0; j < outputs.size(); ++j) entry(topic_size + j);
+  older = std::move(before);
   before = std::move(last);
   last = std::move(m);
 }
@@ -155,6 +157,7 @@ void CouplingErrorEstimate::used_at_step_end(std::size_t edge, std::uint64_t k, 
     c.history.clear();
     c.last.reset();
     c.before.reset();
+    c.older.reset();
   }
   if (c.instants.size() == 4) c.instants.erase(c.instants.begin());
   c.instants.emplace_back(k, t_k);
@@ -200,6 +203,7 @@ void CouplingErrorEstimate::discontinuity_at(std::uint64_t k) {
     c.last_event = std::max(c.last_event, k);
     c.last.reset();
     c.before.reset();
+    c.older.reset();
   }
 }
 
@@ -210,7 +214,20 @@ std::optional<CouplingErrorEstimate::Result> CouplingErrorEstimate::at(std::uint
     if (!c.last || c.last->step != k) continue;
     const Measured& m = *c.last;
     const int q = c.error_order;
-    const bool trend = c.before && c.before->step + 1 == k;
+    // K's trend over the two steps before (the three measured last, midpoint to midpoint),
+    // or over one where only two are there. Over two it does not follow a step-to-step
+    // wobble (a long step measures K a little differently from a short one), which over one
+    // step made the trend flip sign every step and the steps alternate long and short.
+    const Measured* from = nullptr;
+    double span = 0.0;
+    if (c.before && c.before->step + 1 == k) {
+      from = &*c.before;
+      span = (m.length + c.before->length) / 2;
+      if (c.older && c.older->step + 2 == k) {
+        from = &*c.older;
+        span = m.length / 2 + c.before->length + c.older->length / 2;
+      }
+    }
     const double target = kSafety * tolerance;
     double ratio = 0.0;
     double longest = std::numeric_limits<double>::infinity();
@@ -224,7 +241,7 @@ std::optional<CouplingErrorEstimate::Result> CouplingErrorEstimate::at(std::uint
       if (e >= m.k.size()) return;
       ratio = std::max(ratio, std::abs(m.k[e]) * m.reach / tolerance);
       // K per unit time between the two steps' midpoints, carried to the next step's start.
-      const double dk = trend && e < c.before->k.size() ? (m.k[e] - c.before->k[e]) / ((m.length + c.before->length) / 2) : 0.0;
+      const double dk = from && e < from->k.size() ? (m.k[e] - from->k[e]) / span : 0.0;
       const double k1 = m.k[e] + dk * (m.length / 2 + current_h);
       longest = std::min(longest, longest_within(std::abs(k1), std::abs(dk), q, s, w, target));
     };

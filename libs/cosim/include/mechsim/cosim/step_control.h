@@ -99,7 +99,7 @@ class CouplingErrorEstimate {
   void discontinuity_at(std::uint64_t k);
   // nullopt when no channel can tell yet (the first steps, and the steps just after an event).
   // The prediction: per field, the measured error of the step k-1 -> k (length a) as
-  // e = K a^q, K's trend from the step before (dK/dt between their midpoints), K carried to
+  // e = K a^q, K's trend from the two steps before (dK/dt between midpoints), K carried to
   // the start of the step after the one under way (length `current_h`), and the error of a
   // step h there bounded by (|K| + |dK/dt| h / 2) h^q. The trend matters where a signal's
   // slope passes through zero: the measured error is small there, the next steps' is not.
@@ -127,7 +127,7 @@ class CouplingErrorEstimate {
     std::uint64_t last_event = 0;
     // Gauss-Seidel: the samples of the last three steps (oldest first).
     std::vector<std::vector<double>> history;
-    std::optional<Measured> last, before;
+    std::optional<Measured> last, before, older;  // the last three steps measured
     std::size_t topic_size = 0;               // fields of the topic (the first entries of K), fixed at construction
     std::vector<std::size_t> outputs;         // Edge::outputs
     std::vector<double> lo, hi;               // per topic field then per output, over every value seen
