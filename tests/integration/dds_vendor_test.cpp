@@ -255,6 +255,8 @@ INSTANTIATE_TEST_SUITE_P(Vendors, Seam,
 // ---------------------------------------------------------------------------------------
 // Whole runs through `mechsim launch`.
 
+void expect_layout(const json& s, const std::string& layout);
+
 class VendorRuns : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -303,6 +305,38 @@ class VendorRuns : public ::testing::Test {
     }
   }
   fs::path dir_;
+
+  // An adaptive run of `scene` on Cyclone, Fast DDS and mixed, and in process: the same
+  // instants and the same bytes in every node's log. Returns the Cyclone run's summary.
+  json expect_adaptive_run_identical_everywhere(const std::string& scene, const std::vector<std::string>& adaptive,
+                                                const std::vector<std::string>& nodes) {
+    std::vector<std::string> extra;
+    for (const auto& o : adaptive) extra.insert(extra.end(), {"--set", o});
+    json runs[3];
+    const char* layouts[] = {"cyclone", "fastdds", "mixed"};
+    for (int i = 0; i < 3; ++i) {
+      std::vector<std::string> with_layout = extra;
+      with_layout.insert(with_layout.end(), {"--dds", layouts[i]});
+      CommandResult r = run(args(scene, layouts[i], with_layout), log(layouts[i]), 240);
+      EXPECT_EQ(r.exit_code, 0) << r.output;
+      if (r.exit_code != 0) return {};
+      runs[i] = summary(layouts[i]);
+      expect_layout(runs[i], layouts[i]);
+    }
+    EXPECT_EQ(runs[0]["steps"], runs[1]["steps"]);
+    expect_identical_outputs({"cyclone", "fastdds", "mixed"}, runs[0]);
+    const config::Scene parsed = config::load_scene(kScenes + scene, adaptive);
+    fs::create_directories(dir_ / "inproc");
+    cosim::InprocRunOptions options;
+    options.run_dir = (dir_ / "inproc").string();
+    const cosim::InprocRunResult r = cosim::run_inproc(parsed, options);
+    EXPECT_TRUE(r.ok) << r.reason;
+    for (const auto& node : nodes)
+      EXPECT_TRUE(slurp((run_folder("cyclone") / (node + ".outputs.bin")).string()) ==
+                  slurp((dir_ / "inproc" / (node + ".outputs.bin")).string()))
+          << node << ": the DDS run and the in-process run differ";
+    return runs[0];
+  }
 };
 
 // The vendors each participant really used, from the summary: the launcher's and every node's.
@@ -343,38 +377,22 @@ TEST_F(VendorRuns, CamPressIsBitIdenticalOnCycloneFastDdsAndMixed) {
 // threads of one process over the in-process transport.
 TEST_F(VendorRuns, AdaptiveCamPressIsBitIdenticalOnCycloneFastDdsMixedAndInProcess) {
   REQUIRE_LAYOUT("mixed");
-  const std::vector<std::string> adaptive{"time.step=adaptive", "time.tolerance=1e-2", "time.max=10 ms", "time.end=1 s"};
-  std::vector<std::string> extra;
-  for (const auto& o : adaptive) extra.insert(extra.end(), {"--set", o});
-  json runs[3];
-  const char* layouts[] = {"cyclone", "fastdds", "mixed"};
-  for (int i = 0; i < 3; ++i) {
-    std::vector<std::string> with_layout = extra;
-    with_layout.insert(with_layout.end(), {"--dds", layouts[i]});
-    CommandResult r = run(args("cam_press.yaml", layouts[i], with_layout), log(layouts[i]), 240);
-    ASSERT_EQ(r.exit_code, 0) << r.output;
-    runs[i] = summary(layouts[i]);
-    expect_layout(runs[i], layouts[i]);
-  }
-  const json& a = runs[0]["adaptive_step"];
-  ASSERT_TRUE(a.is_object()) << runs[0].dump(2);
+  const json run = expect_adaptive_run_identical_everywhere(
+      "cam_press.yaml", {"time.step=adaptive", "time.tolerance=1e-2", "time.max=10 ms", "time.end=1 s"}, {"cam", "follower"});
+  const json& a = run["adaptive_step"];
+  ASSERT_TRUE(a.is_object()) << run.dump(2);
   // The steps vary: the shortest a restart after an event (min, 1 us by default here), the
   // longest the max.
   EXPECT_LT(a["shortest_s"].get<double>(), 1e-4);
   EXPECT_NEAR(a["longest_s"].get<double>(), 10e-3, 1e-12);  // a difference of two instants
-  EXPECT_EQ(runs[0]["steps"], runs[1]["steps"]);
-  expect_identical_outputs({"cyclone", "fastdds", "mixed"}, runs[0]);
+}
 
-  const config::Scene scene = config::load_scene(kScenes + "cam_press.yaml", adaptive);
-  fs::create_directories(dir_ / "inproc");
-  cosim::InprocRunOptions options;
-  options.run_dir = (dir_ / "inproc").string();
-  const cosim::InprocRunResult r = cosim::run_inproc(scene, options);
-  ASSERT_TRUE(r.ok) << r.reason;
-  for (const char* node : {"cam", "follower"})
-    EXPECT_TRUE(slurp((run_folder("cyclone") / (std::string(node) + ".outputs.bin")).string()) ==
-                slurp((dir_ / "inproc" / (std::string(node) + ".outputs.bin")).string()))
-        << node << ": the DDS run and the in-process run differ";
+// The press line's cam is driven through the CVT: its angles are predicted at run time from
+// the shaft's motion (docs/accuracy.md, "Events"), from doubles that cross every wire exactly.
+TEST_F(VendorRuns, AdaptivePressLineWithPredictedAnglesIsBitIdenticalOnCycloneFastDdsMixedAndInProcess) {
+  REQUIRE_LAYOUT("mixed");
+  expect_adaptive_run_identical_everywhere("press_line.yaml", {"time.step=adaptive", "time.tolerance=1e-3", "time.end=0.4 s"},
+                                           {"cvt", "cam", "follower"});
 }
 
 TEST_F(VendorRuns, NcSlideLoopIsBitIdenticalOnCycloneFastDdsAndMixed) {
