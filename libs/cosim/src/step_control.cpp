@@ -108,10 +108,12 @@ void CouplingErrorEstimate::Channel::measured(std::uint64_t k, std::span<const d
   // The distances from t_k to the samples the reconstruction used (Gauss-Seidel: the line
   // through the two samples before t_k, as a linear extrapolation).
   double back[2] = {0.0, 0.0};
-  // (t_0 is never passed in: taken as a step of the same length, as on equal steps.)
+  // reach_product(a, q, back) = a (a + back[0]) (a + back[1]): back[i - 1] is the distance
+  // from t_k-1 to the sample i steps before it. (t_0 is never passed in: taken as a step of
+  // the same length, as on equal steps.)
   for (int i = 1; i < error_order; ++i) {
-    const double d = instant(k) - instant(k - 1 - static_cast<std::uint64_t>(i));
-    back[i - 1] = d > 0 ? d : (i + 1) * a;
+    const double d = instant(k - 1) - instant(k - 1 - static_cast<std::uint64_t>(i));
+    back[i - 1] = d > 0 ? d : i * a;
   }
   const double a_q = reach_product(a, error_order, back);
   Measured m{k, a, std::vector<double>(topic_size + outputs.size(), 0.0), a_q};

@@ -79,6 +79,27 @@ TEST(CouplingErrorEstimate, AHeldSignalWhoseSlopePassesThroughZeroIsPredictedFro
   EXPECT_NEAR(r->longest, (-0.2 + std::sqrt(0.04 + 0.032)) / 2, 1e-9);
 }
 
+// u = t^2 extrapolated linearly errs by u''/2 times the distances from the instant to the
+// two samples used: a (a + a1) on unequal steps, whatever their lengths. So K is the same on
+// every step (no trend), and the step after one of length c is the root of K h (h + c) = 0.8 tol.
+TEST(CouplingErrorEstimate, ALinearExtrapolationOnUnequalStepsIsMeasuredWithItsReach) {
+  CouplingErrorEstimate est({{EdgeOrder::jacobi, Reconstruction::linear, {0}, {100.0}}});
+  const double t[] = {-0.1, 0.1, 0.3, 0.4};  // t_0 (never passed in: an equal step assumed) .. t_3
+  const auto u = [](double x) { return x * x; };
+  for (std::uint64_t k = 1; k <= 3; ++k) {
+    // What the node extrapolated to t_k through the samples of t_k-2 and t_k-1.
+    const double slope = (u(t[k - 1]) - u(k >= 2 ? t[k - 2] : -0.3)) / (t[k - 1] - (k >= 2 ? t[k - 2] : -0.3));
+    const double used = u(t[k - 1]) + slope * (t[k] - t[k - 1]);
+    est.used_at_step_end(0, k, t[k], std::vector<double>{used});
+    est.received(0, k, std::vector<double>{u(t[k])});
+  }
+  const auto r = est.at(3, 1e-3, 0.05);
+  ASSERT_TRUE(r.has_value());
+  EXPECT_NEAR(r->ratio, 0.1 * 0.3 / 100 / 1e-3, 1e-12);  // e = a (a + a1) = 0.03, scale 100
+  // K = 0.03 / 100 / 0.03 = 0.01 on both steps measured: 0.01 h (h + 0.05) = 0.8e-3.
+  EXPECT_NEAR(r->longest, (-0.05 + std::sqrt(0.05 * 0.05 + 4 * 0.08)) / 2, 1e-9);
+}
+
 TEST(CouplingErrorEstimate, NoStepWhoseReconstructionReachesBackAcrossAnEventIsMeasured) {
   // A load jumps by 10 at the event instant t_5: the step 4 -> 5 (held) and, for a linear
   // reconstruction, also 5 -> 6 use a sample from before it. They measure the jump, not the
