@@ -89,6 +89,18 @@ TEST_F(ReplayTest, ReplayedAmplifierDrivesTheLiveNodesBitForBit) {
 
 // An adaptive macro step: the replayed amplifier proposes the recorded run's instants, so
 // the live nodes step where they stepped and repeat their outputs bit for bit.
+// The live nodes of a replayed run logged the original run's bytes (`steps` rows at least).
+void expect_live_nodes_repeat(const fs::path& original_dir, const fs::path& replayed_dir, const std::vector<std::string>& nodes,
+                              std::uint64_t steps) {
+  for (const auto& node : nodes) {
+    SCOPED_TRACE(node);
+    const std::string a = slurp((original_dir / (node + ".outputs.bin")).string());
+    const std::string b = slurp((replayed_dir / (node + ".outputs.bin")).string());
+    EXPECT_GT(a.size(), steps * 8);
+    EXPECT_TRUE(a == b) << "outputs of the live node differ from the original run";
+  }
+}
+
 TEST_F(ReplayTest, AReplayOfAnAdaptiveRunStepsWhereTheRunStepped) {
   const std::vector<std::string> adaptive{"--end", "20 ms", "--set", "time.step=adaptive", "--set", "time.tolerance=1e-3",
                                           "--set", "time.max=25 us", "--set", "time.min=0.1 us"};
@@ -114,13 +126,7 @@ TEST_F(ReplayTest, AReplayOfAnAdaptiveRunStepsWhereTheRunStepped) {
   auto replayed = run(launch_args(scene_path("nc_slide_loop.yaml"), "replayed", args), log("replayed"), 180);
   ASSERT_EQ(replayed.exit_code, 0) << replayed.output;
   EXPECT_EQ(summary("replayed")["steps"].get<std::uint64_t>(), steps);
-  for (const char* node : {"tacho", "slide"}) {
-    SCOPED_TRACE(node);
-    const std::string a = slurp((original_dir / (std::string(node) + ".outputs.bin")).string());
-    const std::string b = slurp((run_folder("replayed") / (std::string(node) + ".outputs.bin")).string());
-    EXPECT_GT(a.size(), steps * 8);
-    EXPECT_TRUE(a == b) << "outputs of the live node differ from the original run";
-  }
+  expect_live_nodes_repeat(original_dir, run_folder("replayed"), {"tacho", "slide"}, steps);
 }
 
 // The press line's cam is driven through the CVT: its law's joints and the follower's load
@@ -140,13 +146,7 @@ TEST_F(ReplayTest, AReplayedCamWhoseAnglesArePredictedAtRunTimeGivesTheSameBytes
   ASSERT_EQ(replayed.exit_code, 0) << replayed.output;
   const auto steps = summary("press_original")["steps"].get<std::uint64_t>();
   EXPECT_EQ(summary("press_replayed")["steps"].get<std::uint64_t>(), steps);
-  for (const char* node : {"cvt", "follower"}) {
-    SCOPED_TRACE(node);
-    const std::string a = slurp((original_dir / (std::string(node) + ".outputs.bin")).string());
-    const std::string b = slurp((run_folder("press_replayed") / (std::string(node) + ".outputs.bin")).string());
-    EXPECT_GT(a.size(), steps * 8);
-    EXPECT_TRUE(a == b) << "outputs of the live node differ from the original run";
-  }
+  expect_live_nodes_repeat(original_dir, run_folder("press_replayed"), {"cvt", "follower"}, steps);
 }
 
 TEST_F(ReplayTest, ARecordingThatDoesNotFitTheSceneIsRefusedBeforeAnyProcessStarts) {
