@@ -22,7 +22,6 @@ int error_order(config::EdgeOrder order, config::Reconstruction r) {
   return 1;
 }
 
-
 // The reconstruction's error over a step of length h, per unit of the signal's derivative
 // of order q (the leading term of the interpolation remainder, without its 1/q!): the
 // distances from the reconstructed instant to the q samples it uses. A Jacobi edge
@@ -105,12 +104,11 @@ void CouplingErrorEstimate::Channel::measured(std::uint64_t k, std::span<const d
     older.reset();
     return;
   }
-  // The distances from t_k to the samples the reconstruction used (Gauss-Seidel: the line
-  // through the two samples before t_k, as a linear extrapolation).
+  // The reach: the distances from t_k to the samples the reconstruction used (Gauss-Seidel:
+  // the line through the two samples before t_k, as a linear extrapolation), a (a + back[0])
+  // (a + back[1]) with back[i - 1] the distance from t_k-1 to the sample i steps before it.
+  // (t_0 is never passed in: taken as a step of the same length, as on equal steps.)
   double back[2] = {0.0, 0.0};
-  // reach_product(a, q, back) = a (a + back[0]) (a + back[1]): back[i - 1] is the distance
-  // from t_k-1 to the sample i steps before it. (t_0 is never passed in: taken as a step of
-  // the same length, as on equal steps.)
   for (int i = 1; i < error_order; ++i) {
     const double d = instant(k - 1) - instant(k - 1 - static_cast<std::uint64_t>(i));
     back[i - 1] = d > 0 ? d : i * a;

@@ -99,9 +99,10 @@ class CouplingErrorEstimate {
   void discontinuity_at(std::uint64_t k);
   // nullopt when no channel can tell yet (the first steps, and the steps just after an event).
   // The prediction: per field, the measured error of the step k-1 -> k (length a) as
-  // e = K a^q, K's trend from the two steps before (dK/dt between midpoints), K carried to
+  // e = K a^q (a^q: the reach), K's trend from the two steps before (dK/dt between midpoints), K carried to
   // the start of the step after the one under way (length `current_h`), and the error of a
-  // step h there bounded by (|K| + |dK/dt| h / 2) h^q. The trend matters where a signal's
+  // step h there bounded by (|K| + |dK/dt| h / 2) times its reach (h^q on equal steps; a
+  // Jacobi edge's h (h + current_h) ... on unequal ones, Measured::reach). The trend matters where a signal's
   // slope passes through zero: the measured error is small there, the next steps' is not.
   std::optional<Result> at(std::uint64_t k, double tolerance, double current_h) const;
 
