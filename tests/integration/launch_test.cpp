@@ -225,6 +225,19 @@ TEST_F(Launch, ABadSceneIsRefusedBeforeAnyProcessStarts) {
   EXPECT_EQ(c.exit_code, 2);
 }
 
+// `mechsim check` names the angles an adaptive step lands on where the shaft's speed varies
+// (the press line's cam is driven through the CVT): they have no time before the run.
+TEST(Cli, CheckNamesTheAnglesPredictedDuringTheRun) {
+  const std::string log = (fs::temp_directory_path() / ("mechsim-check-" + std::to_string(::getpid()))).string();
+  CommandResult c = run({kMechsim, "check", scene_path("press_line.yaml"), "--set", "time.step=adaptive"}, log, 30);
+  EXPECT_EQ(c.exit_code, 0) << c.output;
+  EXPECT_NE(c.output.find("steps land where cam's angle reaches 0, 150, 180, 330 deg"), std::string::npos) << c.output;
+  EXPECT_NE(c.output.find("steps land where follower's input angle reaches 90, 150 deg"), std::string::npos) << c.output;
+  CommandResult fixed = run({kMechsim, "check", scene_path("press_line.yaml")}, log, 30);
+  EXPECT_EQ(fixed.output.find("steps land where"), std::string::npos) << "a fixed grid does not predict angles";
+  fs::remove(log);
+}
+
 TEST(Cli, VersionAndHelpAnswer) {
   const std::string log = (fs::temp_directory_path() / ("mechsim-cli-" + std::to_string(::getpid()))).string();
   CommandResult v = run({kMechsim, "--version"}, log, 10);

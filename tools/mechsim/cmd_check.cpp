@@ -24,6 +24,22 @@ void add_check_command(CLI::App& app, int& exit_code) {
                     scene.name.c_str(), static_cast<long>(plan.grid()->steps()), scene.time.step, plan.nodes().size());
       for (const auto& e : plan.scheduled_events())
         std::printf("  a step lands on t = %.9g s (scheduled by %s)\n", e.t, e.participant.c_str());
+      // Angles whose time is known only during the run (the shaft's speed varies).
+      for (const auto& node : plan.nodes())
+        for (const auto& events : node.run_time_angle_events) {
+          std::string angles;
+          for (double a : events.angles) {
+            char buf[32];
+            std::snprintf(buf, sizeof buf, "%s%g", angles.empty() ? "" : ", ", a * 180.0 / 3.141592653589793);
+            angles += buf;
+          }
+          if (events.own_outputs)
+            std::printf("  steps land where %s's angle reaches %s deg (its law's joints; predicted during the run, "
+                        "its speed varies)\n", node.name().c_str(), angles.c_str());
+          else
+            std::printf("  steps land where %s's input angle reaches %s deg (its loads' ends; predicted during the run, "
+                        "the shaft's speed varies)\n", node.name().c_str(), angles.c_str());
+        }
       for (const auto& node : plan.nodes()) {
         std::printf("  %-12s %-12s publishes %-24s (%d states, %s)\n", node.name().c_str(), node.type->name.c_str(),
                     node.topic.c_str(), node.block->num_states(), node.spec->vendor.c_str());
