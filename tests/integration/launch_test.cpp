@@ -86,6 +86,7 @@ TEST_F(Launch, TheAdaptivePressStaysUnderOnePercentWithFewerStepsThanTheFixedGri
   // where the estimate lags, not the 2 - 3x of a controller that overshoots.
   EXPECT_LT(s["signals"]["cam.shaft_torque"]["max_rel_error"].get<double>(), 0.006);
   EXPECT_EQ(s["signals"]["follower.contact_force"]["max_abs_error"].get<double>(), 0.0) << "a Gauss-Seidel edge stays exact";
+  EXPECT_FALSE(s["adaptive_step"].contains("suggested_scales")) << "the scene writes its scales";
 }
 
 TEST_F(Launch, TwoRunsOfASceneGiveBitIdenticalOutputs) {

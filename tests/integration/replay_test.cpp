@@ -118,6 +118,13 @@ TEST_F(ReplayTest, AReplayOfAnAdaptiveRunStepsWhereTheRunStepped) {
   EXPECT_TRUE(proposals) << s["recording"]["topics"].dump(2);
   EXPECT_GT(s["adaptive_step"]["longest_s"].get<double>(), 1.5 * s["adaptive_step"]["shortest_s"].get<double>())
       << "the step did not vary: " << s["adaptive_step"].dump();
+  // Without time.scales the launcher hands back this run's ranges of what the estimate scales
+  // (the servo reads the tacho voltage and the slide's angle), to write in the scene.
+  const json& suggested = s["adaptive_step"]["suggested_scales"];
+  ASSERT_TRUE(suggested.contains("tacho") && suggested.contains("slide")) << s["adaptive_step"].dump(2);
+  for (const auto& [participant, fields] : suggested.items())
+    for (const auto& [field, range] : fields.items()) EXPECT_GT(range.get<double>(), 0.0) << participant << "." << field;
+  EXPECT_NE(original.output.find("    scales: {"), std::string::npos) << original.output;
   const fs::path original_dir = run_folder("original");
   const std::string recording = (original_dir / "recording.mcap").string();
 

@@ -572,24 +572,11 @@ std::vector<std::pair<std::string, double>> Bench::reference_scales(int variant,
     const auto add = [&](const std::string& name) {
       const int c = ref.run.log.column(name);
       if (c < 0 || !seen.insert(name).second) return;
-      double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-      for (double v : ref.run.log.data[static_cast<std::size_t>(c)])
-        if (std::isfinite(v)) {
-          lo = std::min(lo, v);
-          hi = std::max(hi, v);
-        }
-      if (hi > lo) out.emplace_back(name, hi - lo);
+      if (const double range = cosim::finite_range(ref.run.log.data[static_cast<std::size_t>(c)]); range > 0)
+        out.emplace_back(name, range);
     };
     const cosim::ScenePlan plan = cosim::ScenePlan::build(*ref.scene);
-    for (const auto& node : plan.nodes()) {
-      // What the node reads, and the outputs of its own whose error the estimate weighs
-      // (those it publishes: a scale names a topic field).
-      for (const auto& edge : node.inputs)
-        for (const auto& [field, input] : edge.field_to_input) add(edge.from + "." + edge.type->fields[static_cast<std::size_t>(field)].name);
-      for (const int o : node.watched_outputs)
-        if (std::find(node.published_outputs.begin(), node.published_outputs.end(), o) != node.published_outputs.end())
-          add(node.name() + "." + node.block->outputs()[static_cast<std::size_t>(o)].name);
-    }
+    for (const auto& [participant, field] : plan.scaled_quantities()) add(participant + "." + field);
   } catch (const std::exception&) {
     out.clear();
   }

@@ -848,6 +848,19 @@ int Run::execute() {
     std::map<std::string, cosim::OutputLog> logs;
     for (const auto& node : plan_.nodes())
       logs[node.name()] = cosim::read_output_log(run_dir_ + "/" + node.name() + ".outputs.bin");
+    // An adaptive step without time.scales measured each signal against its range so far,
+    // small while it first rises: the ranges of this run, to write in the scene.
+    if (const auto& a = scene_.time.adaptive; a && a->scales.empty()) {
+      json suggested = json::object();
+      for (const auto& [participant, field] : plan_.scaled_quantities()) {
+        const auto& log = logs.at(participant);
+        const int c = log.column(field);
+        if (c < 0) continue;
+        if (const double range = cosim::finite_range(log.data[static_cast<std::size_t>(c)]); range > 0)
+          suggested[participant][field] = range;
+      }
+      summary["adaptive_step"]["suggested_scales"] = suggested;
+    }
     const auto& t = ref.log.data[0];
     auto cosim_series = [&](const config::SignalRef& r) -> std::span<const double> {
       const auto& log = logs.at(r.participant);
@@ -970,6 +983,21 @@ int Run::execute() {
                     summary["reference"]["event_counts"].value(kind, 0));
     }
     print_solver_health(summary["nodes"]);
+    if (summary.contains("adaptive_step") && summary["adaptive_step"].contains("suggested_scales")) {
+      std::string scales;
+      for (const auto& [participant, fields] : summary["adaptive_step"]["suggested_scales"].items()) {
+        std::string inner;
+        for (const auto& [field, range] : fields.items()) {
+          char buf[96];
+          std::snprintf(buf, sizeof buf, "%s%s: %.3g", inner.empty() ? "" : ", ", field.c_str(), range.get<double>());
+          inner += buf;
+        }
+        scales += (scales.empty() ? "" : ", ") + participant + ": {" + inner + "}";
+      }
+      std::printf("  adaptive step without time.scales: each signal's error was measured against its range so far, small while it\n"
+                  "    first rises (docs/accuracy.md). This run's ranges (SI), to write in the scene's time section:\n"
+                  "    scales: {%s}\n", scales.c_str());
+    }
     std::printf("  run folder: %s\n", run_dir_.c_str());
     return 0;
   }

@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
+#include <limits>
 #include <chrono>
 #include <cstring>
 #include <fstream>
@@ -156,6 +158,16 @@ OutputLog read_output_log(const std::string& path) {
   while (in.read(reinterpret_cast<char*>(row.data()), bytes))
     for (std::size_t i = 0; i < row.size(); ++i) log.data[i].push_back(row[i]);
   return log;
+}
+
+double finite_range(std::span<const double> column) {
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (const double v : column)
+    if (std::isfinite(v)) {
+      lo = std::min(lo, v);
+      hi = std::max(hi, v);
+    }
+  return hi > lo ? hi - lo : 0.0;
 }
 
 }  // namespace mechsim::cosim

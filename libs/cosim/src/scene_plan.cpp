@@ -172,6 +172,21 @@ void ScenePlan::land_on_scheduled_events() {
                         : std::make_shared<const StepGrid>(StepGrid::landing_on(time, times));
 }
 
+std::vector<std::pair<std::string, std::string>> ScenePlan::scaled_quantities() const {
+  std::vector<std::pair<std::string, std::string>> out;
+  const auto add = [&](const std::string& participant, const std::string& field) {
+    if (std::find(out.begin(), out.end(), std::make_pair(participant, field)) == out.end()) out.emplace_back(participant, field);
+  };
+  for (const auto& node : nodes_) {
+    for (const auto& edge : node.inputs)
+      for (const auto& [field, input] : edge.field_to_input) add(edge.from, edge.type->fields[static_cast<std::size_t>(field)].name);
+    for (const int o : node.watched_outputs)
+      if (std::find(node.published_outputs.begin(), node.published_outputs.end(), o) != node.published_outputs.end())
+        add(node.name(), node.block->outputs()[static_cast<std::size_t>(o)].name);
+  }
+  return out;
+}
+
 ScenePlan ScenePlan::build(const config::Scene& scene) {
   ScenePlan plan;
   plan.scene_ = &scene;

@@ -72,4 +72,8 @@ struct OutputLog {
 // last row (a node killed while writing) is dropped.
 OutputLog read_output_log(const std::string& path);
 
+// max - min of a column's finite values (0 when it holds fewer than two distinct ones): the
+// range an adaptive step's scale is compared with (time.scales).
+double finite_range(std::span<const double> column);
+
 }  // namespace mechsim::cosim

@@ -87,6 +87,10 @@ class ScenePlan {
   const std::vector<PlannedNode>& nodes() const { return nodes_; }
   const PlannedNode& node(const std::string& name) const;
   PlannedNode& node(const std::string& name);
+  // The published quantities whose scale an adaptive step's estimate uses (time.scales,
+  // step_control.h), as (participant, field): every field a node reads, and every watched
+  // output a node publishes. Each once, in plan order.
+  std::vector<std::pair<std::string, std::string>> scaled_quantities() const;
   // (node index, output index) of a compared signal; throws ConfigError if unknown.
   std::pair<int, int> resolve(const config::SignalRef& ref) const;
 
