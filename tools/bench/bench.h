@@ -39,6 +39,7 @@ struct BenchOptions {
   std::optional<std::vector<double>> tolerances;
   bool quick = false;                   // small subset for CI
   int dds_checks = -1;                  // DDS spot checks; -1 = default (2, quick 1)
+  int repeat = 1;                       // every run timed this often, the fastest kept (short runs more: see bench.cpp)
   std::string mechsim_exe;              // for the DDS spot checks; "" = /proc/self/exe
   std::string work_dir;                 // scratch; "" = a fresh directory under /tmp
   bool keep_work_dir = false;

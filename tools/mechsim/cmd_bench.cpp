@@ -54,6 +54,8 @@ void add_bench_command(CLI::App& app, int& exit_code) {
       "scheme and the best fixed-H scheme at the scene's H, cvode_bdf at --rtol (default: 1e-2,3e-3,1e-3,3e-4,1e-4; "
       "--quick 1e-2,1e-3; 'none': no adaptive points)");
   cmd->add_option("--dds-checks", opt->dds_checks, "number of DDS spot checks through `mechsim launch` (default 2, --quick 1)");
+  cmd->add_option("--repeat", opt->repeat, "time every in-process run this often and keep the fastest (default 1; runs under 0.25 s are repeated anyway, up to ten times)")
+      ->check(CLI::Range(1, 100));
   cmd->add_flag("--quick", opt->quick, "a small subset for CI: the shipped, zero-order-hold and linear schemes, 3 steps, cvode_bdf");
   cmd->add_option("--work-dir", opt->work_dir, "scratch folder for run logs (default: a fresh /tmp/mechsim-bench-*)");
   cmd->add_flag("--keep", opt->keep_work_dir, "keep the scratch folder");
