@@ -567,11 +567,11 @@ std::vector<std::pair<std::string, double>> Bench::reference_scales(int variant,
   Reference& ref = reference(variant, h);
   std::vector<std::pair<std::string, double>> out;
   if (!ref.error.empty() || !ref.scene) return out;
-  std::set<std::string> seen;
   try {
+    // Each quantity once (ScenePlan::scaled_quantities).
     const auto add = [&](const std::string& name) {
       const int c = ref.run.log.column(name);
-      if (c < 0 || !seen.insert(name).second) return;
+      if (c < 0) return;
       if (const double range = cosim::finite_range(ref.run.log.data[static_cast<std::size_t>(c)]); range > 0)
         out.emplace_back(name, range);
     };

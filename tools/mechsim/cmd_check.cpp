@@ -1,4 +1,5 @@
 #include <cstdio>
+#include <numbers>
 #include <string>
 
 #include "commands.h"
@@ -30,7 +31,7 @@ void add_check_command(CLI::App& app, int& exit_code) {
           std::string angles;
           for (double a : events.angles) {
             char buf[32];
-            std::snprintf(buf, sizeof buf, "%s%g", angles.empty() ? "" : ", ", a * 180.0 / 3.141592653589793);
+            std::snprintf(buf, sizeof buf, "%s%g", angles.empty() ? "" : ", ", a * 180.0 / std::numbers::pi);
             angles += buf;
           }
           if (events.own_outputs)

@@ -131,11 +131,11 @@ void ScenePlan::land_on_scheduled_events() {
     // An adaptive step also lands on a uniformly turning shaft's law joints (Block::angle_law_changes),
     // and on those of a shaft whose speed varies where the node predicts them at run time.
     const auto rotation = node.block->uniform_rotation();
-    if (time.adaptive && !rotation && !node.block->angle_law_changes().empty() && node.block->output_index("angle") >= 0)
-      node.run_time_angle_events.push_back({true, node.block->angle_law_changes()});
-    if (rotation && time.adaptive) {
+    const std::vector<double> joints = time.adaptive ? node.block->angle_law_changes() : std::vector<double>{};
+    if (!rotation && !joints.empty() && node.block->output_index("angle") >= 0) node.run_time_angle_events.push_back({true, joints});
+    if (rotation) {
       const double two_pi = 2.0 * std::numbers::pi;
-      for (double angle : node.block->angle_law_changes()) {
+      for (double angle : joints) {
         const auto past = [&](double theta) { return theta - two_pi * std::floor(theta / two_pi) >= angle; };
         for (double t : times_of_angle(*rotation, angle, time.start, time.end, past, kMaxScheduledEvents))
           scheduled_events_.push_back({node.name(), t});
