@@ -90,6 +90,9 @@ connections:
   EXPECT_EQ(v[8].document["connections"][0]["reconstruction"].as<std::string>(), "linear");
   // The input document is not changed.
   EXPECT_FALSE(doc["connections"][0]["reconstruction"]);
+  // The shipped orders with the Jacobi edge quadratic are gauss_seidel/quadratic: that one is
+  // marked for the adaptive points, no twin is added.
+  for (std::size_t i = 0; i < v.size(); ++i) EXPECT_EQ(v[i].shipped_quadratic, i == 6) << v[i].name;
 }
 
 TEST(BenchSchemes, ACutGetsCompliantAndInterfaceJacobianVariants) {
@@ -99,7 +102,7 @@ connections:
   - {from: tacho, to: slide, coupling: {scheme: interface_jacobian, levels: 10, stiffness: 23e3 N m/rad, damping: 0.15 N m s/rad}}
 )");
   const auto v = scheme_variants(doc);
-  ASSERT_EQ(v.size(), 7u);
+  ASSERT_EQ(v.size(), 8u);
   EXPECT_EQ(v[1].name, "compliant/hold");
   EXPECT_TRUE(v[1].zero_order_hold_jacobi);
   // Compliant: both directions of the cut, the element on one, no `levels`.
@@ -114,6 +117,26 @@ connections:
   EXPECT_EQ(v[4].name, "interface_jacobian/1");
   EXPECT_EQ(v[4].document["connections"].size(), 2u);
   EXPECT_EQ(v[4].document["connections"][1]["coupling"]["levels"].as<int>(), 1);
+  // The shipped orders with every Jacobi edge quadratic, the interface Jacobian cut as it is
+  // (no variant above has these connections, so it is added).
+  EXPECT_EQ(v[7].name, "shipped/quadratic");
+  EXPECT_TRUE(v[7].shipped_quadratic);
+  EXPECT_EQ(v[7].document["connections"][0]["reconstruction"].as<std::string>(), "quadratic");
+  EXPECT_FALSE(v[7].document["connections"][1]["reconstruction"]);
+  EXPECT_EQ(v[7].document["connections"][1]["coupling"]["scheme"].as<std::string>(), "interface_jacobian");
+  for (std::size_t i = 0; i < 7; ++i) EXPECT_FALSE(v[i].shipped_quadratic) << v[i].name;
+}
+
+TEST(BenchSchemes, NoQuadraticVariantWhereEveryJacobiEdgeIsQuadraticAlready) {
+  const YAML::Node doc = YAML::Load(R"(
+connections:
+  - {from: cam, to: follower, order: gauss_seidel}
+  - {from: follower, to: cam, order: jacobi, reconstruction: quadratic}
+)");
+  for (const auto& x : scheme_variants(doc)) {
+    EXPECT_NE(x.name, "shipped/quadratic");
+    EXPECT_FALSE(x.shipped_quadratic) << x.name;
+  }
 }
 
 }  // namespace

@@ -52,6 +52,9 @@ struct SchemeVariant {
   std::string family;     // the curve family: "jacobi", "gauss_seidel", "compliant", "interface_jacobian"
   bool zero_order_hold_jacobi = false;  // the baseline of the 10x target
   bool shipped = false;   // the connections as the scene ships them
+  // The scene's orders with every Jacobi edge quadratic ("shipped/quadratic", or the variant
+  // with those connections): the adaptive step also runs with it.
+  bool shipped_quadratic = false;
   YAML::Node document;
 };
 

@@ -67,9 +67,17 @@ void InputChannel::values_at(double t, std::uint64_t k, std::vector<double>& out
 void InputChannel::extrapolate(double t, double s, std::uint64_t k, std::vector<double>& out) const {
   const std::vector<double>* now = find(k);
   if (!now) throw std::logic_error("Jacobi input reconstructed without its step-k sample");
-  const std::vector<double>* before = k > 0 && reconstruction_ != config::Reconstruction::hold ? find(k - 1) : nullptr;
+  // On an adaptive grid the extrapolation does not reach back across an event (a sample at
+  // the event's instant is its value after it): it restarts from hold, as an integrator
+  // restarts at order one after a discontinuity, while the steps after the event are short.
+  // A slope through a jump would extrapolate the jump (docs/accuracy.md, "Events").
+  const bool restart = grid_->is_adaptive();
+  const std::vector<double>* before =
+      k > 0 && reconstruction_ != config::Reconstruction::hold && !(restart && grid_->is_event(k)) ? find(k - 1) : nullptr;
   const std::vector<double>* oldest =
-      k > 1 && reconstruction_ == config::Reconstruction::quadratic ? find(k - 2) : nullptr;
+      before && k > 1 && reconstruction_ == config::Reconstruction::quadratic && !(restart && grid_->is_event(k - 1))
+          ? find(k - 2)
+          : nullptr;
   if (!before) {  // hold, or the first step of an extrapolation
     out = *now;
     return;

@@ -118,6 +118,40 @@ TEST(InputChannel, JacobiQuadraticIsExactOnAParabolaInTimeAcrossAShortStep) {
   }
 }
 
+// On an adaptive grid a Jacobi extrapolation does not reach back across an event: at the
+// event's instant it holds the sample (the value after the event), one step later it is
+// linear through the samples after it, then quadratic again. A slope through the jump would
+// carry the jump into the steps after it.
+TEST(InputChannel, OnAnAdaptiveGridTheExtrapolationRestartsAfterAnEvent) {
+  config::TimeSpec time{0.0, 1.0, 0.1};
+  time.adaptive = config::AdaptiveStepSpec{1e-3, 1e-4, 0.1, 0.1};
+  auto grid = std::make_shared<const StepGrid>(StepGrid::adaptive(time, {}));
+  // Steps of 0.1 to the event at 0.3 (step 3), then 0.01, 0.02, 0.04.
+  grid->extend(1, 0.2, false);
+  grid->extend(2, 0.3, true);
+  grid->extend(3, 0.31, false);
+  grid->extend(4, 0.33, false);
+  grid->extend(5, 0.37, false);
+  ASSERT_TRUE(grid->is_event(3));
+  auto before = [](double t) { return 5.0 * t; };
+  auto after = [](double t) { return -2.0 + 3.0 * t - 8.0 * t * t; };  // jumps at 0.3
+  InputChannel c(EdgeOrder::jacobi, Reconstruction::quadratic, grid);
+  for (std::uint64_t k = 0; k <= 5; ++k) {
+    const double t = grid->time(k);
+    c.add(k, {k < 3 ? before(t) : after(t)});
+  }
+  std::vector<double> v;
+  c.values_at_step_end(3, v);  // step 3 -> 4: only the sample at the event
+  EXPECT_EQ(v[0], after(0.3));
+  c.values_at_step_end(4, v);  // step 4 -> 5: the line through the samples at 0.3 and 0.31
+  EXPECT_NEAR(v[0], after(0.31) + (after(0.31) - after(0.3)) * 2.0, 1e-12);
+  c.values_at_step_end(5, v);  // step 5 -> 6: the parabola through the three samples after it
+  EXPECT_NEAR(v[0], after(0.37), 1e-12);
+  // The step before the event (2 -> 3) still extrapolates the parabola through 0, 0.1, 0.2.
+  c.values_at_step_end(2, v);
+  EXPECT_NEAR(v[0], before(0.3), 1e-12);
+}
+
 TEST(InputChannel, GaussSeidelInterpolatesOverAShortStepByItsOwnLength) {
   auto grid = std::make_shared<const StepGrid>(StepGrid::landing_on({0.0, 1.0, kH}, std::vector<double>{0.23}));
   InputChannel c(EdgeOrder::gauss_seidel, Reconstruction::hold, grid);

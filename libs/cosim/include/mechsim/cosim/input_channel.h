@@ -3,7 +3,8 @@
 // time section):
 //  - Jacobi edge, step k -> k+1 needs the partner's step-k sample; inside the step the
 //    input is held (ZOH), extrapolated linearly from steps k-1 and k, or quadratically from
-//    k-2, k-1 and k (with fewer samples at the start: hold at k = 0, linear at k = 1);
+//    k-2, k-1 and k (with fewer samples at the start: hold at k = 0, linear at k = 1; on
+//    an adaptive grid likewise after an event: no sample before it is used);
 //  - Gauss-Seidel edge needs the step-(k+1) sample; inside the step the input is
 //    interpolated between steps k and k+1.
 // Pure logic (no transport), so the protocol is unit-tested without DDS.
