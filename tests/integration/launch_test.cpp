@@ -70,16 +70,19 @@ TEST_F(Launch, CamPressRunsDistributedAndReproducesTheReference) {
 
 // The same press with an adaptive macro step (config/scenes/cam_press_adaptive.yaml): the
 // issue's target for the default press, under 1 % of range with no more macro steps than the
-// fixed grid's 2000. Measured: 582 steps, 0.439 %.
+// fixed grid's 2000. Measured: 301 steps, 0.434 % (with the drive torque held, as
+// cam_press.yaml ships it: 582 steps, 0.439 %).
 TEST_F(Launch, TheAdaptivePressStaysUnderOnePercentWithFewerStepsThanTheFixedGrid) {
   CommandResult r = run(RunFolderTest::launch_args(scene_path("cam_press_adaptive.yaml"), "a"), log("a"), 120);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const json s = summary("a");
   const auto steps = s["steps"].get<std::uint64_t>();
-  // The fixed 1 ms grid takes 2003 steps for 0.475 %; the adaptive one equidistributes the
-  // error at 0.8 tol x scale = 0.08 N m (0.41 % of the 19.3 N m range) and needs 582.
+  // The fixed 1 ms grid takes 2003 steps for 0.475 %; the adaptive one keeps the error under
+  // 0.8 tol x scale = 0.08 N m (0.41 % of the 19.3 N m range) and needs 301: 200 of `max`
+  // (10 ms) over 2 s, and each of the 7 restarts (load steps, law joints) grows from
+  // `initial` (10 us) to `max` in some 10 doublings.
   EXPECT_LT(steps, 1000u) << "not half the fixed grid's steps";
-  EXPECT_GT(steps, 200u) << "hardly any steps: the controller did not refine";
+  EXPECT_GT(steps, 250u) << "fewer steps than the restarts after the events take: the controller did not refine";
   EXPECT_EQ(s["adaptive_step"]["steps"].get<std::uint64_t>(), steps);
   EXPECT_NEAR(s["adaptive_step"]["shortest_s"].get<double>(), 10e-6, 1e-9) << "every restart begins at `initial`";
   // Under 1 % as the issue asks, and near what the tolerance asks: a few percent over 0.41 %
