@@ -50,6 +50,11 @@ void add_check_command(CLI::App& app, int& exit_code) {
                       e.reconstruction == config::Reconstruction::hold     ? "hold"
                       : e.reconstruction == config::Reconstruction::linear ? "linear"
                                                                            : "quadratic");
+        // Node solver tolerances; under an adaptive step they follow its tolerance unless written.
+        if (node.block->num_states() > 0 && scene.time.adaptive)
+          std::printf("  %12s solver %s, rtol %g, atol %g%s\n", "", node.spec->solver.method.c_str(), node.spec->solver.rtol,
+                      node.spec->solver.atol,
+                      node.spec->solver.rtol_written ? "" : " (from the adaptive tolerance: rtol = min(1e-6, tolerance x 1e-4))");
         if (!node.spec->host.empty()) {
           const config::HostSpec* host = scene.find_host(node.spec->host);
           std::printf("  %12s on host %s (%s; started by its mechsim agent unless the launcher runs there)\n", "",

@@ -143,10 +143,12 @@ SolverSpec parse_solver(const ConfigNode& s) {
   if (s.has("method")) spec.method = s.choice("method", solver_method_names());
   if (s.has("rtol")) {
     spec.rtol = s.number("rtol");
+    spec.rtol_written = true;
     if (!(spec.rtol > 0 && spec.rtol < 1)) s.child("rtol").fail("expected a relative tolerance in (0, 1)");
   }
   if (s.has("atol")) {
     spec.atol = s.number("atol");
+    spec.atol_written = true;
     if (!(spec.atol > 0)) s.child("atol").fail("expected a positive absolute tolerance");
   }
   return spec;
@@ -203,6 +205,11 @@ ProcessRealtimeSpec parse_process_realtime(const ConfigNode& rt, ProcessRealtime
 }
 
 }  // namespace
+
+void adaptive_solver_tolerances(SolverSpec& solver, double coupling_tolerance) {
+  if (!solver.rtol_written) solver.rtol = std::min(SolverSpec{}.rtol, coupling_tolerance * kAdaptiveSolverRtolPerTolerance);
+  if (!solver.atol_written) solver.atol = solver.rtol * 1e-3;
+}
 
 Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
   Scene scene;
@@ -334,6 +341,7 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
       spec.process_realtime = parse_process_realtime(*rt, scene_process_realtime);
     }
     if (auto s = p.optional_child("solver")) spec.solver = parse_solver(*s);
+    if (scene.time.adaptive) adaptive_solver_tolerances(spec.solver, scene.time.adaptive->tolerance);
     spec.params = p.has("params") ? p.child("params") : ConfigNode::from_string("{}", root.file());
     spec.key_path = p.path();
     scene.participants.push_back(std::move(spec));

@@ -219,5 +219,30 @@ TEST(SceneValidation, AdaptiveStep) {
   expect_refused(adaptive("") + "\nfaults: {restart: on_failure}\n", "faults.restart", "adaptive");
 }
 
+// Under an adaptive step a node solver's tolerance follows the coupling tolerance where the
+// scene writes none (rtol = min(1e-6, tolerance x 1e-4), atol = rtol / 1000); a written one
+// stands, and a fixed step keeps the defaults.
+TEST(SceneValidation, NodeSolverTolerancesFollowTheAdaptiveTolerance) {
+  const auto follower_solver = [](const std::string& text) {
+    const config::Scene scene = config::load_scene(write_scene(text));
+    return scene.find_participant("follower")->solver;
+  };
+  config::SolverSpec s = follower_solver(adaptive(", tolerance: 1e-4"));
+  EXPECT_DOUBLE_EQ(s.rtol, 1e-8);
+  EXPECT_DOUBLE_EQ(s.atol, 1e-11);
+  s = follower_solver(adaptive(", tolerance: 5e-2"));
+  EXPECT_DOUBLE_EQ(s.rtol, 1e-6) << "never looser than the default";
+  EXPECT_DOUBLE_EQ(s.atol, 1e-9);
+  std::string written = adaptive(", tolerance: 1e-4");
+  written.replace(written.find("type: follower"), std::string("type: follower").size(),
+                  "type: follower\n    solver: {rtol: 1e-7}");
+  s = follower_solver(written);
+  EXPECT_DOUBLE_EQ(s.rtol, 1e-7);
+  EXPECT_DOUBLE_EQ(s.atol, 1e-10) << "atol follows the written rtol";
+  s = follower_solver(cam_press_with("time: {start: 0 s, end: 2 s, step: 1 ms}", "time: {start: 0 s, end: 2 s, step: 1 ms}"));
+  EXPECT_DOUBLE_EQ(s.rtol, 1e-6);
+  EXPECT_DOUBLE_EQ(s.atol, 1e-9);
+}
+
 }  // namespace
 }  // namespace mechsim::cosim

@@ -49,7 +49,20 @@ struct SolverSpec {
   std::string method = "cvode_bdf";  // one of solver_method_names()
   double rtol = 1e-6;
   double atol = 1e-9;
+  // Written in the scene (else the defaults above, or under `time.step: adaptive` the ones
+  // derived from its tolerance: adaptive_solver_tolerances).
+  bool rtol_written = false;
+  bool atol_written = false;
 };
+
+// Under an adaptive step a node solver's tolerance follows the coupling tolerance, as an FMI
+// master hands its tolerance to the slaves' solvers (fmi2SetupExperiment): rtol =
+// min(1e-6, tolerance x 1e-4), atol = rtol / 1000, where the scene writes none. Measured on
+// the shipped scenes, a node's own integration error reaches 1e3 - 1e4 x rtol of a signal's
+// range (the stiff NC cut amplifies it), and an error that the nodes floor does not fall with
+// the tolerance (docs/accuracy.md, "The predictor's order and the node solvers' floor").
+inline constexpr double kAdaptiveSolverRtolPerTolerance = 1e-4;
+void adaptive_solver_tolerances(SolverSpec& solver, double coupling_tolerance);
 
 // Operating-system real-time settings of a node process (`realtime: {priority, lock_memory,
 // cpus}` scene-wide, `participants.<p>.realtime:` per participant, key by key over the
