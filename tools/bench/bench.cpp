@@ -1155,7 +1155,8 @@ int Bench::run() {
     }
   }
 
-  // Adaptive points: the shipped scheme and the best fixed-H scheme at the scene's H (the
+  // Adaptive points: the shipped scheme, its orders with every Jacobi edge quadratic
+  // (SchemeVariant::shipped_quadratic), and the best fixed-H scheme at the scene's H (the
   // swept H nearest it): the smallest max error of cvode_bdf at --rtol, an error below the
   // reference's own counting as 0, the first variant on a tie; cvode_bdf at --rtol, with the
   // scene's adaptive settings or the defaults of `step: adaptive`.

@@ -51,7 +51,8 @@ void add_bench_command(CLI::App& app, int& exit_code) {
   auto* tol_opt = cmd->add_option(
       "--tolerances", *tolerances,
       "coupling tolerances of the adaptive macro step (time.step: adaptive), comma separated, run with the shipped "
-      "scheme and the best fixed-H scheme at the scene's H, cvode_bdf at --rtol (default: 1e-2,3e-3,1e-3,3e-4,1e-4; "
+      "scheme, its orders with every Jacobi edge quadratic (shipped/quadratic) and the best fixed-H scheme at the "
+      "scene's H, cvode_bdf at --rtol (default: 1e-2,3e-3,1e-3,3e-4,1e-4; "
       "--quick 1e-2,1e-3; 'none': no adaptive points)");
   cmd->add_option("--dds-checks", opt->dds_checks, "number of DDS spot checks through `mechsim launch` (default 2, --quick 1)");
   cmd->add_option("--repeat", opt->repeat, "time every in-process run this often and keep the fastest (default 1; runs under 0.25 s are repeated anyway, up to ten times)")
