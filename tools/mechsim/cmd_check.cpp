@@ -41,6 +41,12 @@ void add_check_command(CLI::App& app, int& exit_code) {
             std::printf("  steps land where %s's input angle reaches %s deg (its loads' ends; predicted during the run, "
                         "the shaft's speed varies)\n", node.name().c_str(), angles.c_str());
         }
+      // A sampled block's ticks bound an adaptive step (landed on, not events).
+      if (scene.time.adaptive)
+        for (const auto& node : plan.nodes())
+          if (node.block->sample_time() > 0)
+            std::printf("  steps land on %s's sample instants, every %g s (no step is longer)\n", node.name().c_str(),
+                        node.block->sample_time());
       for (const auto& node : plan.nodes()) {
         std::printf("  %-12s %-12s publishes %-24s (%d states, %s)\n", node.name().c_str(), node.type->name.c_str(),
                     node.topic.c_str(), node.block->num_states(), node.spec->vendor.c_str());

@@ -153,6 +153,14 @@ StepProposal NodeStepper::propose() {
   const double event = std::min(grid_->next_scheduled_event(t_next), next_angle_event(t_next));
   p.event_time = event;
   p.event = std::isfinite(event);
+  // A sampled block's ticks are landed on too, but they are not events: its held output
+  // changes there, which a step that ends on the tick exchanges exactly, and the controller
+  // goes on from the step before (restarting after every tick would pin the step to
+  // `initial`). So no step is longer than the sample time.
+  if (const double tick = next_sample_tick(t_next); tick < p.event_time) {
+    p.event_time = tick;
+    p.event = false;
+  }
   // A replayed participant steps where the recorded run stepped (it has no opinion of its own).
   if (const double recorded = node_.block->next_instant_after(t_next); std::isfinite(recorded)) {
     p.step_length = spec.max;
@@ -163,6 +171,18 @@ StepProposal NodeStepper::propose() {
   proposed_step_ = k_;
   add_proposal(self_, k_, p);
   return p;
+}
+
+double NodeStepper::next_sample_tick(double t_next) const {
+  const double ts = node_.block->sample_time();
+  if (!(ts > 0)) return std::numeric_limits<double>::infinity();
+  // The instants BlockIntegrator samples at (t0 + j ts, computed from j, never accumulated);
+  // one within `min` after t_next is taken inside the step (no sliver of a step).
+  const double t0 = grid_->start(), after = t_next + grid_->adaptive_spec().min;
+  auto j = static_cast<long long>(std::floor((after - t0) / ts));
+  while (j > 0 && t0 + static_cast<double>(j - 1) * ts > after) --j;
+  while (t0 + static_cast<double>(j) * ts <= after) ++j;
+  return t0 + static_cast<double>(j) * ts;
 }
 
 double NodeStepper::next_angle_event(double t_next) {

@@ -288,6 +288,28 @@ TEST(AdaptiveRun, TheRatioScheduleLandsOnAStepBoundary) {
   expect_events_landed(run.plan(), *run.plan().grid());
 }
 
+// A sampled controller's ticks (the digital amplifier of nc_slide_loop_1ms, 1 ms) are landed
+// on: every tick is a step boundary, no step crosses one, and they are not events (the
+// controller goes on from the step before instead of restarting at `initial` each time).
+TEST(AdaptiveRun, ASampledAmplifiersTicksLandOnStepBoundariesWithoutRestarts) {
+  SteppedRun run(testing::shipped_scene("nc_slide_loop_1ms.yaml"),
+                 {"time.end=40 ms", "time.step=adaptive", "time.max=4 ms", "time.tolerance=1e-3"});
+  const std::vector<double> t = stepped_instants(run);
+  const StepGrid& g = *run.plan().grid();
+  const double ts = 1e-3;
+  std::size_t k = 0;
+  for (long long j = 1; j <= 40; ++j) {
+    const double tick = static_cast<double>(j) * ts;  // BlockIntegrator's instants, t0 = 0
+    while (k < t.size() && t[k] < tick) ++k;
+    ASSERT_LT(k, t.size());
+    EXPECT_EQ(t[k], tick) << "tick " << j << " falls inside the step " << t[k - 1] << " .. " << t[k];
+    if (!run.plan().scheduled_events().empty() && run.plan().scheduled_events().front().t == tick) continue;
+    EXPECT_FALSE(g.is_event(k)) << "tick " << j << " restarted the controller";
+  }
+  // Not pinned to the ticks alone: the controller shortens steps where the loop moves.
+  EXPECT_GT(t.size(), 41u);
+}
+
 // Where the cam is driven through the CVT its speed varies, so neither its law's joints nor
 // the follower's load boundaries have a time before the run: the cam and the follower predict
 // each crossing from the shaft's angle, speed and acceleration at the step before

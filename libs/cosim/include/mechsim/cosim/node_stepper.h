@@ -161,6 +161,9 @@ class NodeStepper {
   };
   std::vector<AngleWatch> angle_watches_;
   double next_angle_event(double t_next);
+  // A sampled block's first tick (t0 + j sample_time, the integrator's own instants) more
+  // than `min` after t_next; +inf for a continuous block.
+  double next_sample_tick(double t_next) const;
 };
 
 }  // namespace mechsim::cosim
