@@ -124,7 +124,10 @@ TEST(InputChannel, JacobiQuadraticIsExactOnAParabolaInTimeAcrossAShortStep) {
 // carry the jump into the steps after it.
 TEST(InputChannel, OnAnAdaptiveGridTheExtrapolationRestartsAfterAnEvent) {
   config::TimeSpec time{0.0, 1.0, 0.1};
-  time.adaptive = config::AdaptiveStepSpec{1e-3, 1e-4, 0.1, 0.1};
+  time.adaptive = config::AdaptiveStepSpec{};
+  time.adaptive->min = 1e-4;
+  time.adaptive->max = 0.1;
+  time.adaptive->initial = 0.1;
   auto grid = std::make_shared<const StepGrid>(StepGrid::adaptive(time, {}));
   // Steps of 0.1 to the event at 0.3 (step 3), then 0.01, 0.02, 0.04.
   grid->extend(1, 0.2, false);
