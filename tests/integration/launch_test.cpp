@@ -242,6 +242,23 @@ TEST(Cli, CheckNamesTheAnglesPredictedDuringTheRun) {
   fs::remove(log);
 }
 
+// Under an adaptive step `mechsim check` says what the nodes' solvers will run at (from the
+// tolerance, or written and too loose) and where a sampled block's ticks bound the step.
+TEST(Cli, CheckNamesTheNodeTolerancesAndTheSampleTicksOfAnAdaptiveStep) {
+  const std::string log = (fs::temp_directory_path() / ("mechsim-check-rtol-" + std::to_string(::getpid()))).string();
+  CommandResult c = run({kMechsim, "check", scene_path("nc_slide_loop_1ms.yaml"), "--set", "time.step=adaptive", "--set",
+                         "time.tolerance=1e-4", "--set", "participants.slide.solver.rtol=1e-6"},
+                        log, 30);
+  EXPECT_EQ(c.exit_code, 0) << c.output;
+  EXPECT_NE(c.output.find("steps land on servo's sample instants, every 0.001 s"), std::string::npos) << c.output;
+  EXPECT_NE(c.output.find("rtol 1e-08, atol 1e-11 (from the adaptive tolerance"), std::string::npos) << c.output;
+  EXPECT_NE(c.output.find("rtol 1e-06, atol 1e-09 (written; looser than tolerance x 1e-4"), std::string::npos) << c.output;
+  CommandResult fixed = run({kMechsim, "check", scene_path("nc_slide_loop_1ms.yaml")}, log, 30);
+  EXPECT_EQ(fixed.output.find("sample instants"), std::string::npos) << fixed.output;
+  EXPECT_EQ(fixed.output.find("rtol"), std::string::npos) << fixed.output;
+  fs::remove(log);
+}
+
 TEST(Cli, VersionAndHelpAnswer) {
   const std::string log = (fs::temp_directory_path() / ("mechsim-cli-" + std::to_string(::getpid()))).string();
   CommandResult v = run({kMechsim, "--version"}, log, 10);

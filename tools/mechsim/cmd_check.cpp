@@ -57,10 +57,15 @@ void add_check_command(CLI::App& app, int& exit_code) {
                       : e.reconstruction == config::Reconstruction::linear ? "linear"
                                                                            : "quadratic");
         // Node solver tolerances; under an adaptive step they follow its tolerance unless written.
-        if (node.block->num_states() > 0 && scene.time.adaptive)
-          std::printf("  %12s solver %s, rtol %g, atol %g%s\n", "", node.spec->solver.method.c_str(), node.spec->solver.rtol,
-                      node.spec->solver.atol,
-                      node.spec->solver.rtol_written ? "" : " (from the adaptive tolerance: rtol = min(1e-6, tolerance x 1e-4))");
+        if (const auto& a = scene.time.adaptive; node.block->num_states() > 0 && a) {
+          const config::SolverSpec& solver = node.spec->solver;
+          const char* why = !solver.rtol_written ? " (from the adaptive tolerance: rtol = min(1e-6, tolerance x 1e-4))"
+                            : solver.rtol > a->tolerance * config::kAdaptiveSolverRtolPerTolerance
+                                ? " (written; looser than tolerance x 1e-4: this node's own error may exceed the "
+                                  "coupling tolerance, docs/accuracy.md)"
+                                : "";
+          std::printf("  %12s solver %s, rtol %g, atol %g%s\n", "", solver.method.c_str(), solver.rtol, solver.atol, why);
+        }
         if (!node.spec->host.empty()) {
           const config::HostSpec* host = scene.find_host(node.spec->host);
           std::printf("  %12s on host %s (%s; started by its mechsim agent unless the launcher runs there)\n", "",
