@@ -142,8 +142,8 @@ std::vector<SchemeVariant> scheme_variants(const YAML::Node& scene_document) {
     out.push_back(v);
   }
   // The scene's own orders with every Jacobi edge extrapolated quadratically: under an
-  // error-controlled step the predictor's order buys longer steps (docs/accuracy.md,
-  // "Which reconstruction under an adaptive step"), where at a fixed H the scene's lower
+  // error-controlled step the predictor's order buys longer steps (docs/accuracy.md, "The
+  // predictor's order and the node solvers' floor"), where at a fixed H the scene's lower
   // order may be the better one. Left out where it changes nothing; where another variant
   // has the same connections, that one is marked instead (below).
   std::optional<YAML::Node> quadratic_connections;

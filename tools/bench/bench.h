@@ -9,9 +9,10 @@
 // than the reference's own error estimate (cosim::estimate_reference_error: a re-run at a
 // 100x tighter tolerance) is never reported as a number: it is marked "below reference
 // accuracy". Adaptive points: the shipped scheme (its orders with every Jacobi edge quadratic,
-// and the best fixed-H scheme at the scene's H) with an adaptive macro step (time.step: adaptive) at each of --tolerances, each measured
-// against its own reference sampled at the instants its run took, and set against the best
-// fixed-H error reached at the same wall time ("adaptive_vs_fixed").
+// and the best fixed-H scheme at the scene's H) with an adaptive macro step (time.step:
+// adaptive) at each of --tolerances, each measured against its own reference sampled at the
+// instants its run took, and set against the best fixed-H error reached at the same wall
+// time ("adaptive_vs_fixed").
 #pragma once
 
 #include <iosfwd>

@@ -176,13 +176,10 @@ StepProposal NodeStepper::propose() {
 double NodeStepper::next_sample_tick(double t_next) const {
   const double ts = node_.block->sample_time();
   if (!(ts > 0)) return std::numeric_limits<double>::infinity();
-  // The instants BlockIntegrator samples at (t0 + j ts, computed from j, never accumulated);
-  // one within `min` after t_next is taken inside the step (no sliver of a step).
-  const double t0 = grid_->start(), after = t_next + grid_->adaptive_spec().min;
-  auto j = static_cast<long long>(std::floor((after - t0) / ts));
-  while (j > 0 && t0 + static_cast<double>(j - 1) * ts > after) --j;
-  while (t0 + static_cast<double>(j) * ts <= after) ++j;
-  return t0 + static_cast<double>(j) * ts;
+  // The instants BlockIntegrator samples at (its origin is the run's start); one within
+  // `min` after t_next is taken inside the step (no sliver of a step).
+  const double t0 = grid_->start();
+  return solve::sample_instant(t0, ts, solve::first_sample_after(t0, ts, t_next + grid_->adaptive_spec().min));
 }
 
 double NodeStepper::next_angle_event(double t_next) {

@@ -54,7 +54,7 @@ struct BlockIntegrator::Impl {
 
   // --- sampled part: instants t0 + j * Ts, j = next_sample, next_sample + 1, ...
   bool sampled() const { return sample_period > 0.0; }
-  double sample_instant(long long j) const { return sample_origin + static_cast<double>(j) * sample_period; }
+  double sample_instant(long long j) const { return solve::sample_instant(sample_origin, sample_period, j); }
   // An instant within this of t counts as reached: absorbs rounding in t0 + j*Ts and in the
   // caller's exchange times, yet stays far below any physically meaningful interval.
   double sample_slack(double at) const { return 1e-9 * sample_period + 8.0 * DBL_EPSILON * std::abs(at); }
@@ -144,10 +144,15 @@ void BlockIntegrator::Impl::run_due_samples() {
 
 void BlockIntegrator::Impl::resume_samples_after(double at) {
   if (!sampled()) return;
-  long long j = static_cast<long long>(std::floor((at - sample_origin) / sample_period));
-  while (j > 0 && sample_instant(j - 1) > at + sample_slack(at)) --j;
-  while (sample_instant(j) <= at + sample_slack(at)) ++j;
-  next_sample = j;
+  next_sample = first_sample_after(sample_origin, sample_period, at + sample_slack(at));
+}
+
+long long first_sample_after(double t0, double ts, double at) {
+  // The division's guess may be one off either way; the instants themselves decide.
+  auto j = static_cast<long long>(std::floor((at - t0) / ts));
+  while (j > 0 && sample_instant(t0, ts, j - 1) > at) --j;
+  while (sample_instant(t0, ts, j) <= at) ++j;
+  return j;
 }
 
 void BlockIntegrator::Impl::integrate_to(double target) {

@@ -70,4 +70,11 @@ class BlockIntegrator {
   std::unique_ptr<Impl> impl_;
 };
 
+// A sampled block's grid: instant j is t0 + j Ts, computed from j (never accumulated), the
+// same double for the integrator that samples there and for a node that lands an adaptive
+// step on it (cosim::NodeStepper).
+inline double sample_instant(double t0, double ts, long long j) { return t0 + static_cast<double>(j) * ts; }
+// The smallest j with sample_instant(t0, ts, j) > at (at >= t0).
+long long first_sample_after(double t0, double ts, double at);
+
 }  // namespace mechsim::solve
