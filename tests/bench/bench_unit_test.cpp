@@ -66,12 +66,15 @@ TEST(BenchEnvelope, LeastErrorAtNoMoreWallTimeInterpolatedLogLog) {
   EXPECT_TRUE(std::isnan(envelope_at({}, 1)));
 }
 
+// The cam press's connections: the cam's motion within the step, the follower's torque back
+// one step late with the given reconstruction.
+YAML::Node cam_press_connections(const std::string& reconstruction) {
+  return YAML::Load("connections:\n  - {from: cam, to: follower, order: gauss_seidel}\n"
+                    "  - {from: follower, to: cam, order: jacobi, reconstruction: " + reconstruction + "}\n");
+}
+
 TEST(BenchSchemes, ExplicitConnectionsGetJacobiAndGaussSeidelVariants) {
-  const YAML::Node doc = YAML::Load(R"(
-connections:
-  - {from: cam, to: follower, order: gauss_seidel}
-  - {from: follower, to: cam, order: jacobi, reconstruction: hold}
-)");
+  const YAML::Node doc = cam_press_connections("hold");
   const auto v = scheme_variants(doc);
   std::vector<std::string> names;
   for (const auto& x : v) names.push_back(x.name);
@@ -128,12 +131,7 @@ connections:
 }
 
 TEST(BenchSchemes, NoQuadraticVariantWhereEveryJacobiEdgeIsQuadraticAlready) {
-  const YAML::Node doc = YAML::Load(R"(
-connections:
-  - {from: cam, to: follower, order: gauss_seidel}
-  - {from: follower, to: cam, order: jacobi, reconstruction: quadratic}
-)");
-  for (const auto& x : scheme_variants(doc)) {
+  for (const auto& x : scheme_variants(cam_press_connections("quadratic"))) {
     EXPECT_NE(x.name, "shipped/quadratic");
     EXPECT_FALSE(x.shipped_quadratic) << x.name;
   }
