@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages mechsim builds and runs with (apt-get), only when one is
-# missing. Used by the README's two commands; safe to run again.
+# Installs the Debian 12 packages mechsim needs (apt-get), only when one is missing; safe to
+# run again. Two sets, so that the first run does not wait for what only the tests need:
+#   tools/install-deps.sh          build and run (README command 1: tools/setup-and-run.sh)
+#   tools/install-deps.sh --tests  also the test suites, the fuzz build and the host test bed
+#                                  (README command 2: tools/run-tests.sh)
 set -euo pipefail
 
 packages=(
@@ -10,16 +13,24 @@ packages=(
   default-jre-headless fastdds-tools      # fastddsgen runs on Java; `fastdds shm clean`
   libsundials-dev                         # CVODE / ARKODE 6.4
   libeigen3-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev
-  libgtest-dev libbenchmark-dev           # tests, benchmarks
   gnuplot-nox                             # PNG plots
   libzstd-dev liblz4-dev                  # MCAP chunk compression
-  iproute2 iptables                       # the multi-host test bed (tools/netns-hosts.sh)
   openssl                                 # `mechsim security init` (docs/security.md)
-  clang libclang-rt-14-dev                # sanitizer + libFuzzer build only (label fuzz, .ci/run)
 )
-# node + npm run the third-party MCAP reader test; machines that already have a Node.js
-# (e.g. from NodeSource, whose nodejs conflicts with Debian's npm) keep theirs.
-command -v node >/dev/null && command -v npm >/dev/null || packages+=(nodejs npm)
+case "${1:-}" in
+  "") ;;
+  --tests)
+    packages+=(
+      libgtest-dev libbenchmark-dev       # tests, benchmarks
+      iproute2 iptables                   # the multi-host test bed (tools/netns-hosts.sh)
+      clang libclang-rt-14-dev            # sanitizer + libFuzzer build only (label fuzz, .ci/run)
+    )
+    # node + npm run the third-party MCAP reader test; machines that already have a Node.js
+    # (e.g. from NodeSource, whose nodejs conflicts with Debian's npm) keep theirs.
+    command -v node >/dev/null && command -v npm >/dev/null || packages+=(nodejs npm)
+    ;;
+  *) echo "usage: tools/install-deps.sh [--tests]" >&2; exit 2 ;;
+esac
 
 missing=()
 for p in "${packages[@]}"; do

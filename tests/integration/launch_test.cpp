@@ -259,6 +259,23 @@ TEST(Cli, CheckNamesTheNodeTolerancesAndTheSampleTicksOfAnAdaptiveStep) {
   fs::remove(log);
 }
 
+// A scene written for an analysis (its design: section) that is not a time run says which
+// command it is for, from `check` and from `launch`, before anything starts (exit 2).
+TEST(Cli, AnAnalysisSceneNamesItsCommandWhenLaunched) {
+  const std::string log = (fs::temp_directory_path() / ("mechsim-analysis-" + std::to_string(::getpid()))).string();
+  for (const char* cmd : {"check", "launch"}) {
+    CommandResult c = run({kMechsim, cmd, scene_path("cvt_map.yaml")}, log, 30);
+    EXPECT_EQ(c.exit_code, 2) << cmd << ": " << c.output;
+    EXPECT_NE(c.output.find("participants.cvt.params.drive: missing key"), std::string::npos) << cmd << ": " << c.output;
+    EXPECT_NE(c.output.find("cvt_map.yaml is a scene for `mechsim cvt-map"), std::string::npos) << cmd << ": " << c.output;
+  }
+  // A time scene with an error says nothing about analyses.
+  CommandResult plain = run({kMechsim, "check", scene_path("press_line.yaml"), "--set", "participants.cvt.params.drive.type=rocket"}, log, 30);
+  EXPECT_EQ(plain.exit_code, 2) << plain.output;
+  EXPECT_EQ(plain.output.find("is a scene for"), std::string::npos) << plain.output;
+  fs::remove(log);
+}
+
 TEST(Cli, VersionAndHelpAnswer) {
   const std::string log = (fs::temp_directory_path() / ("mechsim-cli-" + std::to_string(::getpid()))).string();
   CommandResult v = run({kMechsim, "--version"}, log, 10);

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <functional>
 #include <limits>
 #include <map>
@@ -187,7 +188,36 @@ std::vector<std::pair<std::string, std::string>> ScenePlan::scaled_quantities() 
   return out;
 }
 
+namespace {
+
+// The analyses that read a scene's `design:` section, by the key they read (docs/scenes.md).
+// A scene written for one of them may lack what a time run needs (cvt_map.yaml has no drive).
+std::string analyses_of(const config::Scene& scene) {
+  static const std::pair<const char*, const char*> kAnalyses[] = {
+      {"cvt_map", "mechsim cvt-map"}, {"motor", "mechsim motor-bode"}, {"follower", "mechsim cam-design"}};
+  std::string commands;
+  if (!scene.design || !scene.design->is_map()) return commands;
+  for (const auto& [key, command] : kAnalyses)
+    if (scene.design->has(key)) commands += std::string(commands.empty() ? "`" : " or `") + command + " " + scene.file + "`";
+  return commands;
+}
+
+}  // namespace
+
 ScenePlan ScenePlan::build(const config::Scene& scene) {
+  try {
+    return build_time_run(scene);
+  } catch (const config::ConfigError& e) {
+    const std::string analyses = analyses_of(scene);
+    if (analyses.empty()) throw;
+    throw config::ConfigError(e.file(), e.key_path(),
+                              e.expected() + " (" + std::filesystem::path(scene.file).filename().string() +
+                                  " is a scene for " + analyses + " (its design: section); a time run of it needs this key)",
+                              e.line());
+  }
+}
+
+ScenePlan ScenePlan::build_time_run(const config::Scene& scene) {
   ScenePlan plan;
   plan.scene_ = &scene;
   for (const auto& spec : scene.participants) {

@@ -70,7 +70,8 @@ struct PlannedNode {
 
 class ScenePlan {
  public:
-  // Throws config::ConfigError.
+  // Throws config::ConfigError. A scene made for an analysis (its `design:` section) that
+  // cannot be run in time says which command it is for.
   static ScenePlan build(const config::Scene& scene);
 
   const config::Scene& scene() const { return *scene_; }
@@ -95,6 +96,7 @@ class ScenePlan {
   std::pair<int, int> resolve(const config::SignalRef& ref) const;
 
  private:
+  static ScenePlan build_time_run(const config::Scene& scene);
   // Collects the blocks' scheduled events (and their angle events where a uniformly turning
   // shaft feeds them) and lands the grid on them.
   void land_on_scheduled_events();
