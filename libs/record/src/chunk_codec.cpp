@@ -20,7 +20,7 @@ std::string hex32(uint32_t v) {
 std::string chunk_where(uint64_t chunk_offset) { return "Chunk at offset " + std::to_string(chunk_offset); }
 
 OpenedChunk read_chunk(const InputFile& file, uint64_t offset, uint64_t length,
-                       const ChunkLimits& limits, ReadAccounting& accounting) {
+                       const ChunkLimits& limits, ReadAccounting& accounting, uint64_t* pass_claimed) {
   const std::string where = chunk_where(offset);
   // A compressed record is at most a little larger than its contents (zstd/lz4 bounds are
   // below 1/64 extra) plus the header fields: larger records are refused before reading.
@@ -31,6 +31,7 @@ OpenedChunk read_chunk(const InputFile& file, uint64_t offset, uint64_t length,
                     std::to_string(max_record) + " bytes)");
   OpenedChunk chunk;
   chunk.raw = file.read(offset, length);
+  accounting.largest_chunk_buffers = std::max<uint64_t>(accounting.largest_chunk_buffers, chunk.raw.size());
   if (chunk.raw.size() < kRecordPrefixSize || chunk.raw[0] != op::chunk)
     throw McapError(where + ": no Chunk record there (opcode " +
                     (chunk.raw.empty() ? std::string("none") : opcode_name(chunk.raw[0])) + ")");
@@ -43,6 +44,16 @@ OpenedChunk read_chunk(const InputFile& file, uint64_t offset, uint64_t length,
   ++accounting.chunks_opened;
   check_claim(chunk.header.compression, chunk.header.records.size(), chunk.header.uncompressed_size,
               limits, where);
+  if (pass_claimed) {
+    const uint64_t claimed = chunk.header.uncompressed_size;  // <= max_chunk_size: no overflow
+    const uint64_t budget = limits.max_expansion * file.size() + limits.max_chunk_size;
+    if (*pass_claimed + claimed > budget)
+      throw McapError(where + ": claims " + std::to_string(claimed) + " bytes uncompressed after " +
+                      std::to_string(*pass_claimed) + " claimed by the chunks before it, more than the " +
+                      "reader's limit of " + std::to_string(limits.max_expansion) + " x the file's " +
+                      std::to_string(file.size()) + " bytes");
+    *pass_claimed += claimed;
+  }
   accounting.largest_chunk_buffers =
       std::max(accounting.largest_chunk_buffers, chunk.raw.size() + chunk.header.uncompressed_size);
   chunk.records = decompress(chunk.header.compression, chunk.header.records,

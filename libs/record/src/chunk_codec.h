@@ -31,9 +31,13 @@ struct OpenedChunk {
 // when the record is not a Chunk, its own length field disagrees with `length`, it is over
 // `limits` (checked before reading or allocating), it does not decompress to exactly the
 // size it claims, or its CRC (unless 0, "not available") does not match. `accounting`
-// counts the attempt, the bytes decoded and the buffers held.
+// counts the attempt, the bytes decoded and the buffers held. `pass_claimed` (if given)
+// sums the claims of one pass over the file: a chunk that would take the sum past
+// limits.max_expansion x the file's size + one chunk is refused, so that many small chunks
+// (each under the expansion floor) cannot multiply a small file either.
 OpenedChunk read_chunk(const InputFile& file, uint64_t offset, uint64_t length,
-                       const ChunkLimits& limits, ReadAccounting& accounting);
+                       const ChunkLimits& limits, ReadAccounting& accounting,
+                       uint64_t* pass_claimed = nullptr);
 
 // What a chunk's records hold: its messages in record order (views into `records`) with
 // their offsets, and any Schema/Channel records written inside it.

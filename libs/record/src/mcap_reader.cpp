@@ -35,8 +35,10 @@ struct McapReader::Impl {
   void add_channel(const Channel& c) { channels.emplace(c.id, c); }
 
   // Messages of the chunk at `offset`, sorted by log time (stable); views into `records`.
-  std::vector<MessageView> chunk_messages(uint64_t offset, uint64_t length, Buffer& records) const {
-    records = detail::read_chunk(file, offset, length, options.limits, accounting).records;
+  // `pass_claimed`: see read_chunk (nullptr for a single chunk).
+  std::vector<MessageView> chunk_messages(uint64_t offset, uint64_t length, Buffer& records,
+                                          uint64_t* pass_claimed) const {
+    records = detail::read_chunk(file, offset, length, options.limits, accounting, pass_claimed).records;
     std::vector<MessageView> messages = parse_chunk_records(records, offset).messages;
     std::ranges::stable_sort(messages, {}, &MessageView::log_time);
     return messages;
@@ -148,6 +150,7 @@ void McapReader::Impl::open_via_summary(const FooterRecord& footer) {
 void McapReader::Impl::open_via_scan() {
   const DataScan scan = scan_data_section(file, indexed_chunks(file));
   for (const ScanGap& gap : scan.gaps) damage(McapError("'" + file.path() + "': " + gap.reason), gap.offset);
+  uint64_t pass_claimed = 0;
   header = scan.header;
   scan_end = scan.end;
   stop_reason = scan.stop_reason;
@@ -180,7 +183,7 @@ void McapReader::Impl::open_via_scan() {
         OpenedChunk chunk;
         ChunkContents contents;
         try {
-          chunk = detail::read_chunk(file, rec.offset, rec.total_length(), options.limits, accounting);
+          chunk = detail::read_chunk(file, rec.offset, rec.total_length(), options.limits, accounting, &pass_claimed);
           contents = parse_chunk_records(chunk.records, rec.offset);
         } catch (const McapError& e) {
           damage(e, rec.offset);
@@ -273,12 +276,13 @@ const std::vector<std::string>& McapReader::damaged() const { return impl_->dama
 const ReadAccounting& McapReader::accounting() const { return impl_->accounting; }
 
 void McapReader::for_each_message(const std::function<void(const MessageView&)>& visit) const {
+  uint64_t pass_claimed = 0;
   for (const DataItem& item : impl_->items) {
     if (item.is_chunk) {
       Buffer records;
       std::vector<MessageView> messages;
       try {
-        messages = impl_->chunk_messages(item.offset, item.length, records);
+        messages = impl_->chunk_messages(item.offset, item.length, records, &pass_claimed);
       } catch (const McapError& e) {
         impl_->damage(e, item.offset);  // strict: rethrown
         continue;
@@ -312,7 +316,7 @@ std::vector<Message> McapReader::read_messages() const {
 std::vector<Message> McapReader::read_chunk(const ChunkInfo& chunk) const {
   Buffer records;
   std::vector<Message> out;
-  for (const MessageView& m : impl_->chunk_messages(chunk.chunk_start_offset, chunk.chunk_length, records))
+  for (const MessageView& m : impl_->chunk_messages(chunk.chunk_start_offset, chunk.chunk_length, records, nullptr))
     out.push_back(to_message(m));
   return out;
 }
@@ -382,9 +386,10 @@ std::vector<std::string> McapReader::verify() const {
   }
   uint64_t messages = loose_messages;
   bool all_chunks_sound = true;
+  uint64_t pass_claimed = 0;
   for (const auto& [offset, length] : chunks) {
     try {
-      const OpenedChunk chunk = detail::read_chunk(file, offset, length, r.options.limits, r.accounting);
+      const OpenedChunk chunk = detail::read_chunk(file, offset, length, r.options.limits, r.accounting, &pass_claimed);
       messages += parse_chunk_records(chunk.records, offset).messages.size();
     } catch (const McapError& e) {
       problems.push_back(e.what());

@@ -22,6 +22,7 @@ RecoveryReport recover(const std::string& in, const std::string& out, const Chun
   // length lies and keep the chunks after it.
   const DataScan scan = scan_data_section(file, indexed_chunks(file));  // throws without magic
   ReadAccounting accounting;
+  uint64_t pass_claimed = 0;
   RecoveryReport report;
   FooterRecord footer;
   report.input_complete = read_footer(file, footer);
@@ -61,7 +62,7 @@ RecoveryReport recover(const std::string& in, const std::string& out, const Chun
         OpenedChunk chunk;
         ChunkContents contents;
         try {
-          chunk = read_chunk(file, rec.offset, rec.total_length(), limits, accounting);
+          chunk = read_chunk(file, rec.offset, rec.total_length(), limits, accounting, &pass_claimed);
           contents = parse_chunk_records(chunk.records, rec.offset);
         } catch (const McapError& e) {
           ++report.chunks_dropped;  // a complete chunk that is damaged: its data is lost
