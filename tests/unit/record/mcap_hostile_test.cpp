@@ -225,13 +225,13 @@ TEST_F(HostileMcap, ClaimBeyondTheExpansionRatioIsRefused) {
   EXPECT_EQ(reader.accounting().bytes_decompressed, 2 * sound_uncompressed());
 }
 
-// A chunk that really expands: 1.125 GiB of zero records compressed by libzstd (~36 KB).
-// Claimed truthfully, it is over the size limit; claimed as 16 MiB (under both limits), the
-// decoder fills exactly 16 MiB, finds one byte more, and stops.
+// A chunk that really expands: 288 MiB of zero records compressed by libzstd (about 15 KB,
+// 19 000:1). Claimed truthfully, it is over the size limit; claimed as 8 MiB (under both
+// limits: 560:1), the decoder fills exactly 8 MiB, finds one byte more, and stops.
 TEST_F(HostileMcap, ChunkThatReallyExpandsStopsAtItsClaim) {
-  const uint64_t real = uint64_t(9) << 27;
+  const uint64_t real = uint64_t(9) << 25;
   const Bytes frame = real_zstd_of_zeros(real);
-  ASSERT_LT(frame.size(), 100'000u);  // the point: a small record that expands hugely
+  ASSERT_LT(frame.size(), 20'000u);  // the point: a small record that expands hugely
 
   const McapReader truthful(with_extra_chunk("zeros_truthful.mcap", frame, real), lenient());
   ASSERT_EQ(truthful.damaged().size(), 1u);
@@ -239,11 +239,11 @@ TEST_F(HostileMcap, ChunkThatReallyExpandsStopsAtItsClaim) {
       << truthful.damaged()[0];
   EXPECT_EQ(truthful.accounting().bytes_decompressed, sound_uncompressed());
 
-  const uint64_t claimed = uint64_t(16) << 20;
-  const McapReader lying(with_extra_chunk("zeros_16mib.mcap", frame, claimed), lenient());
+  const uint64_t claimed = uint64_t(8) << 20;
+  const McapReader lying(with_extra_chunk("zeros_8mib.mcap", frame, claimed), lenient());
   ASSERT_EQ(lying.damaged().size(), 1u);
   EXPECT_TRUE(contains(lying.damaged()[0], "Chunk at offset " + std::to_string(extra_offset_) +
-                                               ": zstd data is larger than the chunk says (16777216 bytes)"))
+                                               ": zstd data is larger than the chunk says (8388608 bytes)"))
       << lying.damaged()[0];
   // The claim plus the one byte that proved it wrong; a zstd block (128 KiB) of slack would
   // mean the decoder wrote past the buffer's end, which it cannot.
