@@ -46,7 +46,7 @@ void add_bag_command(CLI::App& app, int& exit_code) {
         j["provenance"] = provenance("");
         write_json_file(*info_json, j);
       }
-      exit_code = bi.damaged ? 3 : 0;
+      exit_code = recorder::exit_code(bi);
     } catch (const std::exception& e) {
       std::fprintf(stderr, "mechsim bag info: %s\n", e.what());
       exit_code = 1;
@@ -71,7 +71,7 @@ void add_bag_command(CLI::App& app, int& exit_code) {
                       t.skipped ? (" (" + std::to_string(t.skipped) + " undecodable skipped)").c_str() : "");
       }
       for (const auto& why : result.skipped_chunks) std::fprintf(stderr, "mechsim bag export: skipped: %s\n", why.c_str());
-      exit_code = result.skipped_chunks.empty() ? 0 : 3;
+      exit_code = recorder::exit_code(result);
     } catch (const std::exception& e) {
       std::fprintf(stderr, "mechsim bag export: %s\n", e.what());
       exit_code = 1;

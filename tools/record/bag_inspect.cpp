@@ -185,6 +185,9 @@ BagInfo inspect_bag(const std::string& path, const BagReadOptions& options) {
   return info;
 }
 
+int exit_code(const BagInfo& info) { return info.damaged ? kBagDamagedExitCode : 0; }
+int exit_code(const BagExport& result) { return result.skipped_chunks.empty() ? 0 : kBagDamagedExitCode; }
+
 nlohmann::json to_json(const BagInfo& info) {
   nlohmann::json topics = nlohmann::json::array();
   for (const auto& t : info.topics) {

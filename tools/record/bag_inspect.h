@@ -63,6 +63,10 @@ struct BagInfo {
 // options.strict for a file with any problem.
 BagInfo inspect_bag(const std::string& path, const BagReadOptions& options = {});
 nlohmann::json to_json(const BagInfo& info);
+// `mechsim bag info`'s exit code for a file it could read: 0 sound, 3 read with problems
+// (listed). A refusal (record::McapError) is 1.
+inline constexpr int kBagDamagedExitCode = 3;
+int exit_code(const BagInfo& info);
 // The human-readable summary `mechsim bag info` prints.
 std::string format_bag_info(const BagInfo& info);
 
@@ -88,5 +92,7 @@ struct BagExport {
   std::vector<std::string> skipped_chunks;  // why each, naming its offset
 };
 BagExport export_csv(const std::string& bag, const std::string& dir, const BagReadOptions& options = {});
+// `mechsim bag export`'s exit code for a file it exported: 0, or 3 when chunks were skipped.
+int exit_code(const BagExport& result);
 
 }  // namespace mechsim::recorder

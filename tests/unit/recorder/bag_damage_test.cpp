@@ -61,6 +61,7 @@ TEST_F(BagDamage, SoundFileIsComplete) {
   EXPECT_FALSE(info.damaged);
   EXPECT_TRUE(info.problems.empty());
   EXPECT_EQ(info.messages, sample_.messages.size());
+  EXPECT_EQ(exit_code(info), 0);
 }
 
 TEST_F(BagDamage, DamagedChunkIsListedAndTheOthersCounted) {
@@ -76,6 +77,7 @@ TEST_F(BagDamage, DamagedChunkIsListedAndTheOthersCounted) {
   EXPECT_NE(text.find("state:        DAMAGED"), std::string::npos) << text;
   EXPECT_NE(text.find("1 damaged chunks skipped"), std::string::npos) << text;
   EXPECT_EQ(to_json(info)["complete"], false);
+  EXPECT_EQ(exit_code(info), 3);
 
   BagReadOptions strict;
   strict.strict = true;
@@ -93,6 +95,7 @@ TEST_F(BagDamage, RecordLengthOf2To63IsNotComplete) {
   const uint64_t at = chunks_[0].chunk_start_offset;
   const BagInfo info = inspect_bag(with("len.mcap", at + 1, uint64_t(1) << 63, 8));
   EXPECT_FALSE(info.complete);
+  EXPECT_EQ(exit_code(info), 3);  // the old reader said complete, exit 0
   EXPECT_TRUE(any_contains(info.problems, "Chunk record at offset " + std::to_string(at) + " claims 9223372036854775808"))
       << to_json(info)["problems"].dump(1);
 }
@@ -101,6 +104,7 @@ TEST_F(BagDamage, ExportSkipsTheDamagedChunkOnly) {
   const std::string path = bad_crc();
   const BagExport result = export_csv(path, dir_.file("csv"));
   ASSERT_EQ(result.skipped_chunks.size(), 1u);
+  EXPECT_EQ(exit_code(result), 3);
   EXPECT_NE(result.skipped_chunks[0].find("offset " + std::to_string(chunks_[1].chunk_start_offset)), std::string::npos)
       << result.skipped_chunks[0];
   // Every message of the sound chunks is either a row or counted as undecodable.
@@ -111,7 +115,7 @@ TEST_F(BagDamage, ExportSkipsTheDamagedChunkOnly) {
   BagReadOptions strict;
   strict.strict = true;
   EXPECT_THROW(export_csv(path, dir_.file("csv_strict"), strict), record::McapError);
-  EXPECT_TRUE(export_csv(path_, dir_.file("csv_clean"), strict).skipped_chunks.empty());
+  EXPECT_EQ(exit_code(export_csv(path_, dir_.file("csv_clean"), strict)), 0);
 }
 
 }  // namespace
