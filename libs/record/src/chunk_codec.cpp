@@ -17,10 +17,19 @@ std::string hex32(uint32_t v) {
 
 }  // namespace
 
+bool admit(PassBudget& pass, uint64_t record_length, uint64_t claimed, const ChunkLimits& limits) {
+  // claimed <= max_chunk_size (checked first) and records <= the file size: no overflow.
+  const uint64_t records = pass.chunk_records + record_length;
+  if (pass.claimed + claimed > limits.max_expansion * records + limits.max_chunk_size) return false;
+  pass.claimed += claimed;
+  pass.chunk_records = records;
+  return true;
+}
+
 std::string chunk_where(uint64_t chunk_offset) { return "Chunk at offset " + std::to_string(chunk_offset); }
 
 OpenedChunk read_chunk(const InputFile& file, uint64_t offset, uint64_t length,
-                       const ChunkLimits& limits, ReadAccounting& accounting, uint64_t* pass_claimed) {
+                       const ChunkLimits& limits, ReadAccounting& accounting, PassBudget* pass) {
   const std::string where = chunk_where(offset);
   // A compressed record is at most a little larger than its contents (zstd/lz4 bounds are
   // below 1/64 extra) plus the header fields: larger records are refused before reading.
@@ -44,16 +53,12 @@ OpenedChunk read_chunk(const InputFile& file, uint64_t offset, uint64_t length,
   ++accounting.chunks_opened;
   check_claim(chunk.header.compression, chunk.header.records.size(), chunk.header.uncompressed_size,
               limits, where);
-  if (pass_claimed) {
-    const uint64_t claimed = chunk.header.uncompressed_size;  // <= max_chunk_size: no overflow
-    const uint64_t budget = limits.max_expansion * file.size() + limits.max_chunk_size;
-    if (*pass_claimed + claimed > budget)
-      throw McapError(where + ": claims " + std::to_string(claimed) + " bytes uncompressed after " +
-                      std::to_string(*pass_claimed) + " claimed by the chunks before it, more than the " +
-                      "reader's limit of " + std::to_string(limits.max_expansion) + " x the file's " +
-                      std::to_string(file.size()) + " bytes");
-    *pass_claimed += claimed;
-  }
+  if (pass && !admit(*pass, length, chunk.header.uncompressed_size, limits))
+    throw McapError(where + ": claims " + std::to_string(chunk.header.uncompressed_size) +
+                    " bytes uncompressed after " + std::to_string(pass->claimed) +
+                    " claimed by the chunks before it, more than the reader's limit of " +
+                    std::to_string(limits.max_expansion) + " x their " +
+                    std::to_string(pass->chunk_records + length) + " bytes of chunk records (+ one chunk)");
   accounting.largest_chunk_buffers =
       std::max(accounting.largest_chunk_buffers, chunk.raw.size() + chunk.header.uncompressed_size);
   chunk.records = decompress(chunk.header.compression, chunk.header.records,

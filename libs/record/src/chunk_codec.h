@@ -31,13 +31,21 @@ struct OpenedChunk {
 // when the record is not a Chunk, its own length field disagrees with `length`, it is over
 // `limits` (checked before reading or allocating), it does not decompress to exactly the
 // size it claims, or its CRC (unless 0, "not available") does not match. `accounting`
-// counts the attempt, the bytes decoded and the buffers held. `pass_claimed` (if given)
-// sums the claims of one pass over the file: a chunk that would take the sum past
-// limits.max_expansion x the file's size + one chunk is refused, so that many small chunks
-// (each under the expansion floor) cannot multiply a small file either.
+// counts the attempt, the bytes decoded and the buffers held. `pass` (if given) sums one
+// pass over the file's chunks: a chunk that would take the claims past limits.max_expansion
+// x the chunk records so far + one chunk is refused, so that many small chunks (each under
+// the expansion floor) cannot multiply a small file either. Relative to the chunks, not the
+// file, so that recover()'s output (the same chunks) passes where its input did.
+struct PassBudget {
+  uint64_t claimed = 0;        // uncompressed sizes of the chunks admitted so far
+  uint64_t chunk_records = 0;  // their record sizes
+};
+// Adds a chunk of `record_length` bytes claiming `claimed` to `pass` if the claims stay
+// within the budget; false (nothing added) otherwise.
+bool admit(PassBudget& pass, uint64_t record_length, uint64_t claimed, const ChunkLimits& limits);
 OpenedChunk read_chunk(const InputFile& file, uint64_t offset, uint64_t length,
                        const ChunkLimits& limits, ReadAccounting& accounting,
-                       uint64_t* pass_claimed = nullptr);
+                       PassBudget* pass = nullptr);
 
 // What a chunk's records hold: its messages in record order (views into `records`) with
 // their offsets, and any Schema/Channel records written inside it.

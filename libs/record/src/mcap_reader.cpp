@@ -35,10 +35,10 @@ struct McapReader::Impl {
   void add_channel(const Channel& c) { channels.emplace(c.id, c); }
 
   // Messages of the chunk at `offset`, sorted by log time (stable); views into `records`.
-  // `pass_claimed`: see read_chunk (nullptr for a single chunk).
+  // `pass`: see read_chunk (nullptr for a single chunk).
   std::vector<MessageView> chunk_messages(uint64_t offset, uint64_t length, Buffer& records,
-                                          uint64_t* pass_claimed) const {
-    records = detail::read_chunk(file, offset, length, options.limits, accounting, pass_claimed).records;
+                                          PassBudget* pass) const {
+    records = detail::read_chunk(file, offset, length, options.limits, accounting, pass).records;
     std::vector<MessageView> messages = parse_chunk_records(records, offset).messages;
     std::ranges::stable_sort(messages, {}, &MessageView::log_time);
     return messages;
@@ -150,7 +150,7 @@ void McapReader::Impl::open_via_summary(const FooterRecord& footer) {
 void McapReader::Impl::open_via_scan() {
   const DataScan scan = scan_data_section(file, indexed_chunks(file));
   for (const ScanGap& gap : scan.gaps) damage(McapError("'" + file.path() + "': " + gap.reason), gap.offset);
-  uint64_t pass_claimed = 0;
+  PassBudget pass;
   header = scan.header;
   scan_end = scan.end;
   stop_reason = scan.stop_reason;
@@ -183,7 +183,7 @@ void McapReader::Impl::open_via_scan() {
         OpenedChunk chunk;
         ChunkContents contents;
         try {
-          chunk = detail::read_chunk(file, rec.offset, rec.total_length(), options.limits, accounting, &pass_claimed);
+          chunk = detail::read_chunk(file, rec.offset, rec.total_length(), options.limits, accounting, &pass);
           contents = parse_chunk_records(chunk.records, rec.offset);
         } catch (const McapError& e) {
           damage(e, rec.offset);
@@ -276,13 +276,13 @@ const std::vector<std::string>& McapReader::damaged() const { return impl_->dama
 const ReadAccounting& McapReader::accounting() const { return impl_->accounting; }
 
 void McapReader::for_each_message(const std::function<void(const MessageView&)>& visit) const {
-  uint64_t pass_claimed = 0;
+  PassBudget pass;
   for (const DataItem& item : impl_->items) {
     if (item.is_chunk) {
       Buffer records;
       std::vector<MessageView> messages;
       try {
-        messages = impl_->chunk_messages(item.offset, item.length, records, &pass_claimed);
+        messages = impl_->chunk_messages(item.offset, item.length, records, &pass);
       } catch (const McapError& e) {
         impl_->damage(e, item.offset);  // strict: rethrown
         continue;
@@ -386,10 +386,10 @@ std::vector<std::string> McapReader::verify() const {
   }
   uint64_t messages = loose_messages;
   bool all_chunks_sound = true;
-  uint64_t pass_claimed = 0;
+  PassBudget pass;
   for (const auto& [offset, length] : chunks) {
     try {
-      const OpenedChunk chunk = detail::read_chunk(file, offset, length, r.options.limits, r.accounting, &pass_claimed);
+      const OpenedChunk chunk = detail::read_chunk(file, offset, length, r.options.limits, r.accounting, &pass);
       messages += parse_chunk_records(chunk.records, offset).messages.size();
     } catch (const McapError& e) {
       problems.push_back(e.what());

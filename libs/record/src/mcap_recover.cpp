@@ -22,7 +22,8 @@ RecoveryReport recover(const std::string& in, const std::string& out, const Chun
   // length lies and keep the chunks after it.
   const DataScan scan = scan_data_section(file, indexed_chunks(file));  // throws without magic
   ReadAccounting accounting;
-  uint64_t pass_claimed = 0;
+  PassBudget pass;
+  PassBudget kept;  // the output's chunks: what a reader of the output will admit
   RecoveryReport report;
   FooterRecord footer;
   report.input_complete = read_footer(file, footer);
@@ -62,11 +63,19 @@ RecoveryReport recover(const std::string& in, const std::string& out, const Chun
         OpenedChunk chunk;
         ChunkContents contents;
         try {
-          chunk = read_chunk(file, rec.offset, rec.total_length(), limits, accounting, &pass_claimed);
+          chunk = read_chunk(file, rec.offset, rec.total_length(), limits, accounting, &pass);
           contents = parse_chunk_records(chunk.records, rec.offset);
         } catch (const McapError& e) {
           ++report.chunks_dropped;  // a complete chunk that is damaged: its data is lost
           report.dropped.push_back(e.what());
+          break;
+        }
+        // Without the chunks dropped before it, the output must still admit this one.
+        if (!admit(kept, rec.total_length(), chunk.header.uncompressed_size, limits)) {
+          ++report.chunks_dropped;
+          report.dropped.push_back(chunk_where(rec.offset) + ": its claim of " +
+                                   std::to_string(chunk.header.uncompressed_size) +
+                                   " bytes exceeds the expansion budget of the chunks kept before it");
           break;
         }
         for (const auto& s : contents.schemas)

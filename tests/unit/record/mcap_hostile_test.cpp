@@ -254,6 +254,39 @@ TEST_F(HostileMcap, ChunkThatReallyExpandsStopsAtItsClaim) {
   EXPECT_TRUE(lying.read_messages() == sample_.messages);
 }
 
+// Many small chunks, each under the 2 MiB expansion floor, cannot multiply a small file:
+// 60 chunks of ~120 bytes each claiming 2 MiB (16 RLE blocks). A pass admits claims up to
+// 1000 x the chunk records so far + 64 MiB, so about 33 chunks are decoded and the rest are
+// refused without decoding.
+TEST_F(HostileMcap, ManySmallChunksCannotMultiplyTheFile) {
+  Bytes bytes(bytes_.begin(), bytes_.begin() + static_cast<std::ptrdiff_t>(data_end_));
+  const Bytes frame = rle_zstd_frame(16);
+  const uint64_t claimed = uint64_t(2) << 20;
+  std::vector<uint64_t> offsets;
+  for (int i = 0; i < 60; ++i) {
+    offsets.push_back(bytes.size());
+    detail::ChunkHeader h;
+    h.uncompressed_size = claimed;
+    h.compression = "zstd";
+    h.records = frame;
+    detail::encode_chunk(bytes, h);
+  }
+  const std::string path = write("many_small.mcap", bytes);
+  const McapReader reader(path, lenient());
+  ASSERT_EQ(reader.damaged().size(), 60u);  // 2 MiB of zeros are not whole records either
+  std::size_t over_budget = 0;
+  for (const auto& why : reader.damaged())
+    if (contains(why, "claimed by the chunks before it")) ++over_budget;
+  EXPECT_GT(over_budget, 20u) << joined(reader.damaged());
+  EXPECT_LT(over_budget, 40u) << joined(reader.damaged());
+  // What was decoded stays within the pass budget (every sound chunk's record counts too).
+  uint64_t records = 0;
+  for (const auto& c : chunks_) records += c.chunk_length;
+  records += 60 * (bytes.size() - offsets[59]);
+  EXPECT_LE(reader.accounting().bytes_decompressed, 1000 * records + (uint64_t(64) << 20) + 60);
+  EXPECT_TRUE(reader.read_messages() == sample_.messages);
+}
+
 // The lie that passed: chunk 0's record length set to 2^63 in a complete file. The
 // index still reads the other chunks; verify() names the length, the offset, and the data
 // section CRC the writer wrote.
