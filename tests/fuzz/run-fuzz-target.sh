@@ -3,9 +3,10 @@
 # repository's corpus is never written). Exit 0 only when libFuzzer finished the time with
 # no crash, leak, timeout, out-of-memory or sanitizer report; a failing input is left as
 # <work>/artifacts/crash-*, leak-*, timeout-* or oom-* (reproduce: <target> <that file>).
-# Usage: run-fuzz-target.sh TARGET SEED_DIR WORK_DIR SECONDS [DICT]
+# Usage: run-fuzz-target.sh TARGET SEED_DIR WORK_DIR SECONDS [DICT [LIBFUZZER_OPTION...]]
 set -euo pipefail
 target=$1 seeds=$2 work=$3 seconds=$4 dict=${5:-}
+shift $(( $# < 5 ? $# : 5 ))  # what is left: extra libFuzzer options (e.g. -max_len=N)
 here=$(cd "$(dirname "$0")" && pwd)
 
 rm -rf "$work"
@@ -20,6 +21,7 @@ export LSAN_OPTIONS="suppressions=$here/lsan.supp:print_suppressions=0:${LSAN_OP
 args=(-max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1
       -artifact_prefix="$work/artifacts/")
 [ -n "$dict" ] && args+=(-dict="$dict")
+args+=("$@")
 echo "fuzz: $target ${args[*]} $work/corpus"
 status=0
 "$target" "${args[@]}" "$work/corpus" >"$work/fuzz.log" 2>&1 || status=$?

@@ -56,7 +56,8 @@ int recover_file(const RecordArgs& a) {
     std::printf("%s: written with %llu schemas, %llu channels, %llu chunks, %llu messages%s\n", out.c_str(),
                 static_cast<unsigned long long>(r.schemas), static_cast<unsigned long long>(r.channels),
                 static_cast<unsigned long long>(r.chunks), static_cast<unsigned long long>(r.messages),
-                r.chunks_dropped ? (", " + std::to_string(r.chunks_dropped) + " corrupt chunks dropped").c_str() : "");
+                r.chunks_dropped ? (", " + std::to_string(r.chunks_dropped) + " damaged chunks dropped").c_str() : "");
+    for (const auto& why : r.dropped) std::printf("  not kept: %s\n", why.c_str());
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "mechsim record --recover: %s\n", e.what());

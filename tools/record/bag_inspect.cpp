@@ -91,12 +91,22 @@ std::string csv_cell(const FieldValue& v) {
 
 }  // namespace
 
-BagInfo inspect_bag(const std::string& path) {
-  record::McapReader reader(path);
+namespace {
+
+record::McapReader open_bag(const std::string& path, const BagReadOptions& options) {
+  record::ReaderOptions ro;
+  ro.limits = options.limits;
+  ro.strict = options.strict;
+  return record::McapReader(path, ro);
+}
+
+}  // namespace
+
+BagInfo inspect_bag(const std::string& path, const BagReadOptions& options) {
+  const record::McapReader reader = open_bag(path, options);
   BagInfo info;
   info.path = path;
   info.file_size = reader.file_size();
-  info.complete = reader.complete();
   info.truncated = reader.truncated();
   info.readable_bytes = reader.truncated() ? reader.scan_end() : reader.file_size();
   if (reader.truncated()) info.stop_reason = reader.stop_reason();
@@ -165,8 +175,18 @@ BagInfo inspect_bag(const std::string& path) {
   }
   std::sort(info.topics.begin(), info.topics.end(), [](const BagTopic& a, const BagTopic& b) { return a.topic < b.topic; });
   info.problems = reader.verify();
+  if (options.strict && !info.problems.empty())
+    throw record::McapError("'" + path + "' is damaged (" + std::to_string(info.problems.size()) +
+                            " problems; without --strict the sound chunks are read): " + info.problems.front());
+  info.chunks_skipped = reader.damaged().size();
+  info.damaged = !info.problems.empty();
+  info.complete = reader.complete() && !info.damaged;
+  info.accounting = reader.accounting();
   return info;
 }
+
+int exit_code(const BagInfo& info) { return info.damaged ? kBagDamagedExitCode : 0; }
+int exit_code(const BagExport& result) { return result.skipped_chunks.empty() ? 0 : kBagDamagedExitCode; }
 
 nlohmann::json to_json(const BagInfo& info) {
   nlohmann::json topics = nlohmann::json::array();
@@ -190,6 +210,8 @@ nlohmann::json to_json(const BagInfo& info) {
   return {{"file", info.path},
           {"file_size", info.file_size},
           {"complete", info.complete},
+          {"damaged", info.damaged},
+          {"chunks_skipped", info.chunks_skipped},
           {"truncated", info.truncated},
           {"stop_reason", info.stop_reason},
           {"readable_bytes", info.readable_bytes},
@@ -208,9 +230,13 @@ std::string format_bag_info(const BagInfo& info) {
   std::ostringstream o;
   o << "file:         " << info.path << "\n";
   o << "state:        "
-    << (info.complete ? "complete" : info.truncated ? "TRUNCATED (not closed; `mechsim record --recover` rebuilds it)"
-                                                    : "complete data section without a summary")
+    << (info.complete    ? "complete"
+        : info.truncated ? "TRUNCATED (not closed; `mechsim record --recover` rebuilds it)"
+        : info.damaged   ? "DAMAGED (problems below; `mechsim record --recover` keeps the sound chunks)"
+                         : "complete data section without a summary")
     << "\n";
+  if (info.damaged && info.chunks_skipped > 0)
+    o << "              " << info.chunks_skipped << " damaged chunks skipped: their messages are not counted\n";
   if (info.truncated) o << "              read up to byte " << info.readable_bytes << ": " << info.stop_reason << "\n";
   std::string comp;
   for (const auto& c : info.compressions) comp += (comp.empty() ? "" : ", ") + c;
@@ -253,8 +279,12 @@ std::string csv_file_name(const std::string& topic) {
   return name + ".csv";
 }
 
-std::vector<ExportedTopic> export_csv(const std::string& bag, const std::string& dir) {
-  record::McapReader reader(bag);
+BagExport export_csv(const std::string& bag, const std::string& dir, const BagReadOptions& options) {
+  const record::McapReader reader = open_bag(bag, options);
+  if (options.strict)  // a lie the index reads past (a record length) must refuse as well
+    if (const auto problems = reader.verify(); !problems.empty())
+      throw record::McapError("'" + bag + "' is damaged (" + std::to_string(problems.size()) +
+                              " problems): " + problems.front());
   fs::create_directories(dir);
   struct Output {
     ExportedTopic topic;
@@ -304,15 +334,17 @@ std::vector<ExportedTopic> export_csv(const std::string& bag, const std::string&
     *out.file << row;
     ++out.topic.rows;
   });
-  std::vector<ExportedTopic> result;
+  BagExport result;
   for (auto& [id, out] : outputs) {
     if (out.file) {
       out.file->close();
       if (!*out.file) throw std::runtime_error("cannot write " + out.topic.file);
     }
-    result.push_back(out.topic);
+    result.topics.push_back(out.topic);
   }
-  std::sort(result.begin(), result.end(), [](const ExportedTopic& a, const ExportedTopic& b) { return a.topic < b.topic; });
+  std::sort(result.topics.begin(), result.topics.end(),
+            [](const ExportedTopic& a, const ExportedTopic& b) { return a.topic < b.topic; });
+  result.skipped_chunks = reader.damaged();
   return result;
 }
 

@@ -9,7 +9,17 @@
 #include <string>
 #include <vector>
 
+#include "mechsim/record/mcap_types.h"
+
 namespace mechsim::recorder {
+
+// How `bag info` and `bag export` read a file that may be damaged or hostile.
+struct BagReadOptions {
+  // false (the default): a damaged chunk is skipped and listed, the sound chunks are read.
+  // true: any problem refuses the file (record::McapError naming it and its offset).
+  bool strict = false;
+  record::ChunkLimits limits;  // what one chunk may claim (docs/recording.md)
+};
 
 struct BagTopic {
   std::string topic;
@@ -32,7 +42,8 @@ struct BagTopic {
 struct BagInfo {
   std::string path;
   std::uint64_t file_size = 0;
-  bool complete = false;   // Footer + magic present
+  bool complete = false;   // Footer + magic present and nothing wrong (no problems)
+  bool damaged = false;    // verify() found problems; the sound chunks were read
   bool truncated = false;  // ended before its Footer: a recording that was not closed
   std::string stop_reason; // for a truncated file: where and why reading stopped
   std::uint64_t readable_bytes = 0;  // up to the end of the last complete record
@@ -43,12 +54,19 @@ struct BagInfo {
   std::uint64_t log_start_ns = 0, log_end_ns = 0;
   std::uint64_t publish_start_ns = 0, publish_end_ns = 0;
   std::vector<BagTopic> topics;          // sorted by topic name
-  std::vector<std::string> problems;     // McapReader::verify()
+  std::vector<std::string> problems;     // McapReader::verify(), each naming its offset
+  std::uint64_t chunks_skipped = 0;      // damaged chunks whose messages are not counted
+  record::ReadAccounting accounting;     // the reader's decompression accounting
 };
 
-// Throws record::McapError for a file that is not MCAP (or unreadable).
-BagInfo inspect_bag(const std::string& path);
+// Throws record::McapError for a file that is not MCAP (or unreadable), and with
+// options.strict for a file with any problem.
+BagInfo inspect_bag(const std::string& path, const BagReadOptions& options = {});
 nlohmann::json to_json(const BagInfo& info);
+// `mechsim bag info`'s exit code for a file it could read: 0 sound, 3 read with problems
+// (listed). A refusal (record::McapError) is 1.
+inline constexpr int kBagDamagedExitCode = 3;
+int exit_code(const BagInfo& info);
 // The human-readable summary `mechsim bag info` prints.
 std::string format_bag_info(const BagInfo& info);
 
@@ -67,7 +85,14 @@ std::string csv_file_name(const std::string& topic);
 // one row per message in recording order. Doubles are written in the shortest form that
 // reads back bit-exact, booleans as 0/1, strings quoted (RFC 4180). Topics of a type the
 // decoder does not know are skipped (returned with file ""). Throws std::runtime_error
-// when a file cannot be written.
-std::vector<ExportedTopic> export_csv(const std::string& bag, const std::string& dir);
+// when a file cannot be written. A damaged chunk is skipped and listed in `skipped_chunks`
+// (with options.strict: record::McapError instead).
+struct BagExport {
+  std::vector<ExportedTopic> topics;
+  std::vector<std::string> skipped_chunks;  // why each, naming its offset
+};
+BagExport export_csv(const std::string& bag, const std::string& dir, const BagReadOptions& options = {});
+// `mechsim bag export`'s exit code for a file it exported: 0, or 3 when chunks were skipped.
+int exit_code(const BagExport& result);
 
 }  // namespace mechsim::recorder

@@ -23,10 +23,6 @@ std::string compression_name(Compression compression) {
 namespace mechsim::record::detail {
 namespace {
 
-// A corrupt chunk header could claim any size; refuse before allocating it. 4 GiB is far
-// beyond any chunk a recorder writes (1 MiB by default).
-constexpr uint64_t kMaxChunkSize = uint64_t(1) << 32;
-
 // zstd level 1: recordings are written while the simulation runs, so speed matters more
 // than the last percent of size (measured in docs/recording.md).
 constexpr int kZstdLevel = 1;
@@ -49,93 +45,74 @@ Buffer lz4_compress(std::span<const uint8_t> data) {
   return out;
 }
 
-// Decompressed output grows as the decoder produces it, up to the size the chunk claims: a
-// corrupt header claiming gigabytes costs only what the data really holds (found by the mcap
-// fuzzer: a shuffled uncompressed_size of 3.6 GB was allocated before decoding).
-class GrowingOutput {
- public:
-  GrowingOutput(uint64_t claimed, std::size_t compressed_size)
-      : claimed_(static_cast<std::size_t>(claimed)) {
-    constexpr std::size_t kFirstGuess = std::size_t(1) << 16;
-    buffer_.resize(std::min(claimed_, std::max(kFirstGuess, compressed_size * 16)));
-  }
-  uint8_t* free_space() { return buffer_.data() + used_; }
-  std::size_t free_size() const { return buffer_.size() - used_; }
-  void produced(std::size_t n) { used_ += n; }
-  // False when the buffer already holds the claimed size (the data is larger than claimed).
-  bool grow() {
-    if (buffer_.size() >= claimed_) return false;
-    buffer_.resize(std::min(claimed_, std::max<std::size_t>(buffer_.size() * 2, 1)));
-    return true;
-  }
-  std::size_t used() const { return used_; }
-  Buffer take() {
-    buffer_.resize(used_);
-    return std::move(buffer_);
-  }
-
- private:
-  std::size_t claimed_;
-  std::size_t used_ = 0;
-  Buffer buffer_;
-};
-
 std::string sizes_differ(const std::string& where, const char* codec, std::size_t held,
                          uint64_t claimed) {
   return where + ": " + codec + " data holds " + std::to_string(held) + " bytes, chunk says " +
          std::to_string(claimed);
 }
 
-// The decoder made no progress: it needs more room (grow, unless the claimed size is
-// reached) or more input (the frame ends early).
-void stalled(GrowingOutput& out, const std::string& where, const char* codec, uint64_t claimed) {
-  if (out.free_size() > 0) throw McapError(where + ": " + codec + " frame ends early");
-  if (!out.grow())
-    throw McapError(where + ": " + codec + " data is larger than the chunk says (" +
-                    std::to_string(claimed) + " bytes)");
+[[noreturn]] void larger_than_claimed(const std::string& where, const char* codec, uint64_t claimed) {
+  throw McapError(where + ": " + codec + " data is larger than the chunk says (" +
+                  std::to_string(claimed) + " bytes); decompression stopped there");
 }
 
-Buffer zstd_decompress(std::span<const uint8_t> data, uint64_t claimed, const std::string& where) {
+// The output is exactly the claimed size (already bounded by ChunkLimits) and never grows:
+// once it is full, one more byte of output means the chunk lied, and decoding stops.
+Buffer zstd_decompress(std::span<const uint8_t> data, uint64_t claimed, const std::string& where,
+                       uint64_t& produced) {
   std::unique_ptr<ZSTD_DCtx, decltype(&ZSTD_freeDCtx)> ctx(ZSTD_createDCtx(), &ZSTD_freeDCtx);
   if (!ctx) throw std::runtime_error("zstd: cannot create a decompression context");
-  GrowingOutput out(claimed, data.size());
+  Buffer out(static_cast<std::size_t>(claimed));
+  std::size_t used = 0;
+  uint8_t probe = 0;
   ZSTD_inBuffer in{data.data(), data.size(), 0};
   std::size_t hint = 1;  // 0 once a frame is complete
   while (hint != 0 || in.pos < in.size) {  // concatenated frames continue the output
-    ZSTD_outBuffer chunk{out.free_space(), out.free_size(), 0};
+    const bool full = used == out.size();
+    ZSTD_outBuffer o = full ? ZSTD_outBuffer{&probe, 1, 0}
+                            : ZSTD_outBuffer{out.data() + used, out.size() - used, 0};
     const std::size_t in_before = in.pos;
-    hint = ZSTD_decompressStream(ctx.get(), &chunk, &in);
+    hint = ZSTD_decompressStream(ctx.get(), &o, &in);
     if (ZSTD_isError(hint))
       throw McapError(where + ": zstd decompression failed: " + ZSTD_getErrorName(hint));
-    out.produced(chunk.pos);
-    if (chunk.pos == 0 && in.pos == in_before) stalled(out, where, "zstd", claimed);
+    produced += o.pos;
+    if (full && o.pos > 0) larger_than_claimed(where, "zstd", claimed);
+    used += o.pos;
+    if (o.pos == 0 && in.pos == in_before)  // no progress with room left: input ends early
+      throw McapError(where + ": zstd frame ends early");
   }
-  if (out.used() != claimed) throw McapError(sizes_differ(where, "zstd", out.used(), claimed));
-  return out.take();
+  if (used != claimed) throw McapError(sizes_differ(where, "zstd", used, claimed));
+  return out;
 }
 
-Buffer lz4_decompress(std::span<const uint8_t> data, uint64_t claimed, const std::string& where) {
+Buffer lz4_decompress(std::span<const uint8_t> data, uint64_t claimed, const std::string& where,
+                      uint64_t& produced) {
   LZ4F_dctx* raw_ctx = nullptr;
   if (LZ4F_isError(LZ4F_createDecompressionContext(&raw_ctx, LZ4F_VERSION)))
     throw std::runtime_error("lz4: cannot create a decompression context");
   std::unique_ptr<LZ4F_dctx, decltype(&LZ4F_freeDecompressionContext)> ctx(
       raw_ctx, &LZ4F_freeDecompressionContext);
-  GrowingOutput out(claimed, data.size());
+  Buffer out(static_cast<std::size_t>(claimed));
+  std::size_t used = 0;
+  uint8_t probe = 0;
   std::size_t in_pos = 0;
   std::size_t hint = 1;  // 0 once the frame is complete
   while (hint != 0) {
+    const bool full = used == out.size();
     std::size_t in_size = data.size() - in_pos;
-    std::size_t out_size = out.free_size();
-    hint = LZ4F_decompress(ctx.get(), out.free_space(), &out_size, data.data() + in_pos,
-                           &in_size, nullptr);
+    std::size_t out_size = full ? 1 : out.size() - used;
+    hint = LZ4F_decompress(ctx.get(), full ? &probe : out.data() + used, &out_size,
+                           data.data() + in_pos, &in_size, nullptr);
     if (LZ4F_isError(hint))
       throw McapError(where + ": lz4 decompression failed: " + LZ4F_getErrorName(hint));
+    produced += out_size;
+    if (full && out_size > 0) larger_than_claimed(where, "lz4", claimed);
     in_pos += in_size;
-    out.produced(out_size);
-    if (hint != 0 && in_size == 0 && out_size == 0) stalled(out, where, "lz4", claimed);
+    used += out_size;
+    if (hint != 0 && in_size == 0 && out_size == 0) throw McapError(where + ": lz4 frame ends early");
   }
-  if (out.used() != claimed) throw McapError(sizes_differ(where, "lz4", out.used(), claimed));
-  return out.take();
+  if (used != claimed) throw McapError(sizes_differ(where, "lz4", used, claimed));
+  return out;
 }
 
 }  // namespace
@@ -149,19 +126,31 @@ Buffer compress(Compression compression, std::span<const uint8_t> data) {
   throw std::invalid_argument("unknown Compression value");
 }
 
+void check_claim(const std::string& compression, std::size_t compressed, uint64_t claimed,
+                 const ChunkLimits& limits, const std::string& where) {
+  if (claimed > limits.max_chunk_size)
+    throw McapError(where + ": claims " + std::to_string(claimed) +
+                    " bytes uncompressed, more than the reader's limit of " +
+                    std::to_string(limits.max_chunk_size) + " bytes per chunk");
+  if (!compression.empty() && claimed > limits.expansion_floor &&
+      claimed / limits.max_expansion >= std::max<uint64_t>(compressed, 1))
+    throw McapError(where + ": claims " + std::to_string(claimed) + " bytes uncompressed from " +
+                    std::to_string(compressed) + " compressed bytes, an expansion beyond the " +
+                    "reader's limit of " + std::to_string(limits.max_expansion) + ":1");
+}
+
 Buffer decompress(const std::string& compression, std::span<const uint8_t> data,
-                  uint64_t uncompressed_size, const std::string& where) {
-  if (uncompressed_size > kMaxChunkSize)
-    throw McapError(where + ": uncompressed size " + std::to_string(uncompressed_size) +
-                    " is implausible");
+                  uint64_t uncompressed_size, const std::string& where, const ChunkLimits& limits,
+                  uint64_t& produced) {
+  check_claim(compression, data.size(), uncompressed_size, limits, where);
   if (compression.empty()) {
     if (data.size() != uncompressed_size)
       throw McapError(where + ": uncompressed chunk holds " + std::to_string(data.size()) +
                       " bytes, chunk says " + std::to_string(uncompressed_size));
     return Buffer(data.begin(), data.end());
   }
-  if (compression == "zstd") return zstd_decompress(data, uncompressed_size, where);
-  if (compression == "lz4") return lz4_decompress(data, uncompressed_size, where);
+  if (compression == "zstd") return zstd_decompress(data, uncompressed_size, where, produced);
+  if (compression == "lz4") return lz4_decompress(data, uncompressed_size, where, produced);
   throw McapError(where + ": unsupported compression '" + compression + "'");
 }
 

@@ -1,6 +1,7 @@
 #include "mechsim/record/mcap_reader.h"
 
 #include <algorithm>
+#include <set>
 
 #include "chunk_codec.h"
 #include "crc32.h"
@@ -21,18 +22,10 @@ struct DataItem {
   uint64_t length = 0;  // whole record
 };
 
-ChunkHeader read_chunk_header(const InputFile& file, uint64_t offset, uint64_t length,
-                              Buffer& storage) {
-  storage = file.read(offset, length);
-  if (storage.size() < kRecordPrefixSize || storage[0] != op::chunk)
-    throw McapError("'" + file.path() + "': no Chunk record at offset " + std::to_string(offset));
-  return decode_chunk(std::span<const uint8_t>(storage).subspan(kRecordPrefixSize), offset);
-}
-
 }  // namespace
 
 struct McapReader::Impl {
-  explicit Impl(const std::string& path) : file(path) {}
+  Impl(const std::string& path, ReaderOptions opts) : file(path), options(opts) {}
 
   void open_via_summary(const FooterRecord& footer);
   void open_via_scan();
@@ -42,16 +35,26 @@ struct McapReader::Impl {
   void add_channel(const Channel& c) { channels.emplace(c.id, c); }
 
   // Messages of the chunk at `offset`, sorted by log time (stable); views into `records`.
-  std::vector<MessageView> chunk_messages(uint64_t offset, uint64_t length, Buffer& records) const {
-    Buffer raw;
-    const ChunkHeader header = read_chunk_header(file, offset, length, raw);
-    records = open_chunk(header, offset);
+  // `pass`: see read_chunk (nullptr for a single chunk).
+  std::vector<MessageView> chunk_messages(uint64_t offset, uint64_t length, Buffer& records,
+                                          PassBudget* pass) const {
+    records = detail::read_chunk(file, offset, length, options.limits, accounting, pass).records;
     std::vector<MessageView> messages = parse_chunk_records(records, offset).messages;
     std::ranges::stable_sort(messages, {}, &MessageView::log_time);
     return messages;
   }
+  // Strict: rethrows. Otherwise lists the damage (once per offset) and returns.
+  void damage(const McapError& e, uint64_t offset) const {
+    if (options.strict) throw e;
+    if (damaged_offsets.insert(offset).second) damaged.push_back(e.what());
+  }
 
   InputFile file;
+  ReaderOptions options;
+  FooterRecord footer;
+  mutable ReadAccounting accounting;
+  mutable std::vector<std::string> damaged;
+  mutable std::set<uint64_t> damaged_offsets;
   bool complete = false;
   bool truncated = false;
   uint64_t scan_end = 0;
@@ -130,8 +133,14 @@ void McapReader::Impl::open_via_summary(const FooterRecord& footer) {
   std::ranges::sort(chunks, {}, &ChunkInfo::chunk_start_offset);
   for (const auto& c : chunks) {
     if (c.chunk_start_offset > footer.summary_start ||
-        c.chunk_length > footer.summary_start - c.chunk_start_offset)
-      throw McapError("'" + file.path() + "': ChunkIndex points outside the data section");
+        c.chunk_length > footer.summary_start - c.chunk_start_offset) {
+      damage(McapError("'" + file.path() + "': the ChunkIndex of the Chunk at offset " +
+                       std::to_string(c.chunk_start_offset) + " (length " + std::to_string(c.chunk_length) +
+                       ") points outside the data section (summary at " +
+                       std::to_string(footer.summary_start) + ")"),
+             c.chunk_start_offset);
+      continue;
+    }
     items.push_back({true, c.chunk_start_offset, c.chunk_length});
   }
   scan_end = footer.summary_start;
@@ -139,7 +148,9 @@ void McapReader::Impl::open_via_summary(const FooterRecord& footer) {
 }
 
 void McapReader::Impl::open_via_scan() {
-  const DataScan scan = scan_data_section(file);
+  const DataScan scan = scan_data_section(file, indexed_chunks(file));
+  for (const ScanGap& gap : scan.gaps) damage(McapError("'" + file.path() + "': " + gap.reason), gap.offset);
+  PassBudget pass;
   header = scan.header;
   scan_end = scan.end;
   stop_reason = scan.stop_reason;
@@ -169,10 +180,16 @@ void McapReader::Impl::open_via_scan() {
         break;
       }
       case op::chunk: {
-        Buffer raw;
-        const ChunkHeader header = read_chunk_header(file, rec.offset, rec.total_length(), raw);
-        const Buffer records = open_chunk(header, rec.offset);
-        const ChunkContents contents = parse_chunk_records(records, rec.offset);
+        OpenedChunk chunk;
+        ChunkContents contents;
+        try {
+          chunk = detail::read_chunk(file, rec.offset, rec.total_length(), options.limits, accounting, &pass);
+          contents = parse_chunk_records(chunk.records, rec.offset);
+        } catch (const McapError& e) {
+          damage(e, rec.offset);
+          break;
+        }
+        const ChunkHeader& header = chunk.header;
         for (const auto& s : contents.schemas) add_schema(s);
         for (const auto& c : contents.channels) add_channel(c);
         for (const auto& m : contents.messages) {
@@ -206,18 +223,30 @@ void McapReader::Impl::open_via_scan() {
   statistics.chunk_count = static_cast<uint32_t>(chunks.size());
 }
 
-McapReader::McapReader(const std::string& path) : impl_(std::make_unique<Impl>(path)) {
+McapReader::McapReader(const std::string& path, ReaderOptions options)
+    : impl_(std::make_unique<Impl>(path, options)) {
   Impl& r = *impl_;
   if (r.file.size() < kMagic.size() ||
       !std::ranges::equal(r.file.read(0, kMagic.size()), kMagic))
     throw McapError("'" + path + "' is not an MCAP file (no leading magic)");
-  FooterRecord footer;
-  if (read_footer(r.file, footer)) {
+  if (read_footer(r.file, r.footer)) {
     r.complete = true;
-    if (footer.summary_start != 0)
-      r.open_via_summary(footer);
-    else
+    if (r.footer.summary_start == 0) {
       r.open_via_scan();
+      return;
+    }
+    try {
+      r.open_via_summary(r.footer);
+    } catch (const McapError& e) {
+      r.damage(e, r.footer.summary_start);  // strict: rethrown
+      r.schemas.clear();
+      r.channels.clear();
+      r.chunks.clear();
+      r.summary_offsets.clear();
+      r.items.clear();
+      r.statistics = {};
+      r.open_via_scan();
+    }
   } else {
     r.truncated = true;
     r.open_via_scan();
@@ -243,12 +272,22 @@ const std::vector<ChunkInfo>& McapReader::chunks() const { return impl_->chunks;
 const std::vector<SummaryOffset>& McapReader::summary_offsets() const {
   return impl_->summary_offsets;
 }
+const std::vector<std::string>& McapReader::damaged() const { return impl_->damaged; }
+const ReadAccounting& McapReader::accounting() const { return impl_->accounting; }
 
 void McapReader::for_each_message(const std::function<void(const MessageView&)>& visit) const {
+  PassBudget pass;
   for (const DataItem& item : impl_->items) {
     if (item.is_chunk) {
       Buffer records;
-      for (const MessageView& m : impl_->chunk_messages(item.offset, item.length, records)) visit(m);
+      std::vector<MessageView> messages;
+      try {
+        messages = impl_->chunk_messages(item.offset, item.length, records, &pass);
+      } catch (const McapError& e) {
+        impl_->damage(e, item.offset);  // strict: rethrown
+        continue;
+      }
+      for (const MessageView& m : messages) visit(m);
     } else {
       const Buffer content = impl_->file.read(item.offset + kRecordPrefixSize,
                                               item.length - kRecordPrefixSize);
@@ -277,15 +316,53 @@ std::vector<Message> McapReader::read_messages() const {
 std::vector<Message> McapReader::read_chunk(const ChunkInfo& chunk) const {
   Buffer records;
   std::vector<Message> out;
-  for (const MessageView& m : impl_->chunk_messages(chunk.chunk_start_offset, chunk.chunk_length, records))
+  for (const MessageView& m : impl_->chunk_messages(chunk.chunk_start_offset, chunk.chunk_length, records, nullptr))
     out.push_back(to_message(m));
   return out;
 }
 
+namespace {
+
+// The SummaryOffset groups must lie in the summary section and hold only records of their
+// opcode, ending exactly at their stated length.
+void check_summary_offsets(const InputFile& file, const FooterRecord& footer,
+                           const std::vector<SummaryOffset>& groups, std::vector<std::string>& problems) {
+  const uint64_t summary_end = footer.summary_offset_start;
+  for (const SummaryOffset& g : groups) {
+    const std::string what = "SummaryOffset for " + opcode_name(g.group_opcode) + " records (group at offset " +
+                             std::to_string(g.group_start) + ", " + std::to_string(g.group_length) + " bytes)";
+    if (g.group_start < footer.summary_start || g.group_start > summary_end ||
+        g.group_length > summary_end - g.group_start) {
+      problems.push_back(what + " points outside the summary section (" + std::to_string(footer.summary_start) +
+                         ".." + std::to_string(summary_end) + ")");
+      continue;
+    }
+    try {
+      for_each_record(file.read(g.group_start, g.group_length), what,
+                      [&](uint8_t opcode, std::span<const uint8_t>, uint64_t at) {
+                        if (opcode != g.group_opcode)
+                          throw McapError(what + ": holds a " + opcode_name(opcode) + " record at offset " +
+                                          std::to_string(g.group_start + at));
+                      });
+    } catch (const McapError& e) {
+      problems.push_back(e.what());
+    }
+  }
+}
+
+}  // namespace
+
 std::vector<std::string> McapReader::verify() const {
   std::vector<std::string> problems;
-  const InputFile& file = impl_->file;
-  const DataScan scan = scan_data_section(file);
+  const Impl& r = *impl_;
+  const InputFile& file = r.file;
+  std::string summary_problem;
+  const IndexedChunks index = indexed_chunks(file, &summary_problem);
+  if (!summary_problem.empty()) problems.push_back(summary_problem);
+  const DataScan scan = scan_data_section(file, index);
+  for (const ScanGap& gap : scan.gaps) problems.push_back(gap.reason);
+  if (r.complete && !scan.data_end_found)
+    problems.push_back("the data section does not reach its DataEnd: " + scan.stop_reason);
   if (scan.data_end_found && scan.data_section_crc != 0) {
     uint32_t crc = 0;
     constexpr uint64_t kBlock = 1 << 20;
@@ -295,16 +372,35 @@ std::vector<std::string> McapReader::verify() const {
       problems.push_back("data section CRC mismatch (DataEnd at offset " +
                          std::to_string(scan.data_end_offset) + ")");
   }
+  if (r.complete && r.footer.summary_start != 0 && scan.data_end_found && scan.end != r.footer.summary_start)
+    problems.push_back("the Footer says the summary starts at offset " + std::to_string(r.footer.summary_start) +
+                       ", the data section ends at " + std::to_string(scan.end));
+
+  // Every chunk the index or the scan names (they agree where both name one: the scan
+  // checks the index), each opened on its own.
+  std::map<uint64_t, uint64_t> chunks = index;
+  uint64_t loose_messages = 0;
   for (const ScannedRecord& rec : scan.records) {
-    if (rec.opcode != op::chunk) continue;
+    if (rec.opcode == op::chunk) chunks.emplace(rec.offset, rec.total_length());
+    if (rec.opcode == op::message) ++loose_messages;
+  }
+  uint64_t messages = loose_messages;
+  bool all_chunks_sound = true;
+  PassBudget pass;
+  for (const auto& [offset, length] : chunks) {
     try {
-      Buffer raw;
-      const ChunkHeader header = read_chunk_header(file, rec.offset, rec.total_length(), raw);
-      const Buffer records = open_chunk(header, rec.offset);
-      parse_chunk_records(records, rec.offset);
+      const OpenedChunk chunk = detail::read_chunk(file, offset, length, r.options.limits, r.accounting, &pass);
+      messages += parse_chunk_records(chunk.records, offset).messages.size();
     } catch (const McapError& e) {
       problems.push_back(e.what());
+      all_chunks_sound = false;
     }
+  }
+  if (r.complete && r.footer.summary_start != 0) {
+    check_summary_offsets(file, r.footer, r.summary_offsets, problems);
+    if (r.stop_reason == "read via the summary" && all_chunks_sound && r.statistics.message_count != messages)
+      problems.push_back("the Statistics record says " + std::to_string(r.statistics.message_count) +
+                         " messages, the data section holds " + std::to_string(messages));
   }
   return problems;
 }

@@ -12,19 +12,25 @@ namespace mechsim::record {
 
 using namespace detail;
 
-RecoveryReport recover(const std::string& in, const std::string& out) {
+RecoveryReport recover(const std::string& in, const std::string& out, const ChunkLimits& limits) {
   std::error_code ec;
   if (std::filesystem::equivalent(in, out, ec))
     throw std::invalid_argument("recover: input and output are the same file '" + in + "'");
 
   const InputFile file(in);
-  const DataScan scan = scan_data_section(file);  // throws McapError without magic
+  // The input's index, when it has a sound one, lets the scan step over a record whose
+  // length lies and keep the chunks after it.
+  const DataScan scan = scan_data_section(file, indexed_chunks(file));  // throws without magic
+  ReadAccounting accounting;
+  PassBudget pass;
+  PassBudget kept;  // the output's chunks: what a reader of the output will admit
   RecoveryReport report;
   FooterRecord footer;
   report.input_complete = read_footer(file, footer);
   report.input_size = file.size();
   report.scan_end = scan.end;
   report.stop_reason = scan.stop_reason;
+  for (const ScanGap& gap : scan.gaps) report.dropped.push_back(gap.reason);
 
   const HeaderRecord header = scan.header_complete ? scan.header : HeaderRecord{"", "mechsim"};
   McapFileSink sink(out, header, /*sync_chunks=*/false);
@@ -54,16 +60,22 @@ RecoveryReport recover(const std::string& in, const std::string& out) {
         break;
       }
       case op::chunk: {
-        const Buffer raw = file.read(rec.offset, rec.total_length());
-        ChunkHeader chunk_header;
-        Buffer records;
+        OpenedChunk chunk;
         ChunkContents contents;
         try {
-          chunk_header = decode_chunk(std::span<const uint8_t>(raw).subspan(kRecordPrefixSize), rec.offset);
-          records = open_chunk(chunk_header, rec.offset);
-          contents = parse_chunk_records(records, rec.offset);
-        } catch (const McapError&) {
-          ++report.chunks_dropped;  // a complete chunk that is corrupt: its data is lost
+          chunk = read_chunk(file, rec.offset, rec.total_length(), limits, accounting, &pass);
+          contents = parse_chunk_records(chunk.records, rec.offset);
+        } catch (const McapError& e) {
+          ++report.chunks_dropped;  // a complete chunk that is damaged: its data is lost
+          report.dropped.push_back(e.what());
+          break;
+        }
+        // Without the chunks dropped before it, the output must still admit this one.
+        if (!admit(kept, rec.total_length(), chunk.header.uncompressed_size, limits)) {
+          ++report.chunks_dropped;
+          report.dropped.push_back(chunk_where(rec.offset) + ": its claim of " +
+                                   std::to_string(chunk.header.uncompressed_size) +
+                                   " bytes exceeds the expansion budget of the chunks kept before it");
           break;
         }
         for (const auto& s : contents.schemas)
@@ -80,7 +92,7 @@ RecoveryReport recover(const std::string& in, const std::string& out) {
         for (std::size_t k = 0; k < contents.messages.size(); ++k)
           index[contents.messages[k].channel_id].push_back(
               {contents.messages[k].log_time, contents.message_offsets[k]});
-        sink.write_chunk(raw, chunk_header, index);  // byte for byte
+        sink.write_chunk(chunk.raw, chunk.header, index);  // byte for byte
         ++report.chunks;
         report.messages += contents.messages.size();
         break;

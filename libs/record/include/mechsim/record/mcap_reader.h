@@ -7,6 +7,12 @@
 // Messages are delivered chunk by chunk in file order, sorted by log time within a chunk
 // (stable), with messages stored outside chunks in their file position. Chunk CRCs are
 // checked on every read.
+//
+// Files from elsewhere: every chunk is bounded by ReaderOptions::limits before anything is
+// read or allocated (the claim, the record, the expansion ratio), and decompression writes
+// into a buffer of exactly the claimed size, so one chunk costs at most about twice
+// limits.max_chunk_size however the file lies. A damaged chunk throws McapError naming its
+// offset (strict, the default) or is skipped and listed in damaged() (strict = false).
 #pragma once
 
 #include <cstdint>
@@ -20,12 +26,19 @@
 
 namespace mechsim::record {
 
+struct ReaderOptions {
+  ChunkLimits limits;
+  // true: a damaged chunk (or summary) throws McapError. false: it is skipped, listed in
+  // damaged(), and the sound chunks are read (a corrupt summary is replaced by a scan).
+  bool strict = true;
+};
+
 class McapReader {
  public:
   // Throws McapError if the file cannot be opened, does not start with the MCAP magic, or
   // has a complete footer whose summary is corrupt (CRC mismatch, bad offsets): such a
   // file can still be rebuilt with recover().
-  explicit McapReader(const std::string& path);
+  explicit McapReader(const std::string& path, ReaderOptions options = {});
   ~McapReader();
   McapReader(McapReader&&) noexcept;
   McapReader& operator=(McapReader&&) noexcept;
@@ -63,9 +76,18 @@ class McapReader {
   // The messages of one chunk of chunks(), sorted by log time (stable).
   std::vector<Message> read_chunk(const ChunkInfo& chunk) const;
 
-  // Checks what reading does not: the data section CRC in DataEnd (when present and
-  // non-zero) and every chunk's CRC. Returns one line per problem; empty means sound.
+  // Checks what the file states against what it holds: every record length against the
+  // file size and the ChunkIndex records, every chunk (limits, decompression, CRC), the
+  // data section CRC in DataEnd (when non-zero), the Footer's and SummaryOffsets' offsets
+  // and the Statistics message count. Returns one line per problem, each naming its
+  // offset; empty means sound.
   std::vector<std::string> verify() const;
+
+  // Damage met so far while reading with strict = false (chunks skipped, a summary
+  // replaced by a scan), one line each naming the offset, in the order met.
+  const std::vector<std::string>& damaged() const;
+  // The reader's accounting of chunk decompression so far (verify() included).
+  const ReadAccounting& accounting() const;
 
  private:
   struct Impl;

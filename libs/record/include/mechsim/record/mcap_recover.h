@@ -4,6 +4,9 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
+
+#include "mechsim/record/mcap_types.h"
 
 namespace mechsim::record {
 
@@ -16,7 +19,9 @@ struct RecoveryReport {
   uint64_t channels = 0;
   uint64_t chunks = 0;
   uint64_t messages = 0;         // in kept chunks and outside chunks
-  uint64_t chunks_dropped = 0;   // complete chunks that failed their CRC or decompression
+  uint64_t chunks_dropped = 0;   // complete chunks that failed their CRC, limits or decompression
+  // Why each dropped chunk and each skipped stretch was not kept, naming the offset.
+  std::vector<std::string> dropped;
 };
 
 // Copies every complete record of `in`'s data section to `out` (complete chunks byte for
@@ -24,7 +29,9 @@ struct RecoveryReport {
 // as they are), then writes DataEnd, summary, SummaryOffsets, Footer and magic. Works on
 // complete inputs too (it rebuilds their summary). Throws McapError if `in` does not start
 // with the MCAP magic, std::runtime_error if `out` cannot be written. `in` and `out` must
-// differ.
-RecoveryReport recover(const std::string& in, const std::string& out);
+// differ. A chunk over `limits` or otherwise damaged is dropped (listed in `dropped`); when
+// `in` has a sound index, a record whose length lies is stepped over and every sound chunk
+// after it is kept.
+RecoveryReport recover(const std::string& in, const std::string& out, const ChunkLimits& limits = {});
 
 }  // namespace mechsim::record

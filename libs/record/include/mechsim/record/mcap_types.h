@@ -25,6 +25,31 @@ class McapError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// What a reader accepts from a chunk before it decompresses anything: a file from elsewhere
+// may claim any size, so the claim itself is bounded (docs/recording.md, "Reading files
+// from elsewhere"). A chunk over either bound is refused as damaged, naming its offset.
+struct ChunkLimits {
+  // Uncompressed bytes of one chunk. The recorder closes a chunk at 1 MiB (WriterOptions::
+  // chunk_size) plus at most one message; 64 MiB leaves room for writers with bigger chunks.
+  uint64_t max_chunk_size = uint64_t(64) << 20;
+  // Uncompressed / compressed bytes, for chunks over `expansion_floor`. The recorder's most
+  // compressible data, a machine at rest (constant payloads of up to 64 doubles), reaches
+  // 57:1 with zstd level 1 and 30:1 with lz4 (docs/recording.md "Reading files from
+  // elsewhere"); 1000:1 leaves 17x room. Only degenerate content gets past it: 1 MiB of zeros
+  // is 19000:1 with zstd (its run-length blocks allow 32768:1) and 253:1 with lz4.
+  uint64_t max_expansion = 1000;
+  // Chunks claiming up to this size pass whatever their ratio: everything the recorder
+  // writes (1 MiB plus one message of at most 64 KiB) costs little memory however it packs.
+  uint64_t expansion_floor = uint64_t(2) << 20;
+};
+
+// The reader's own accounting of chunk decompression, for the memory and time budget.
+struct ReadAccounting {
+  uint64_t chunks_opened = 0;      // decompression attempts (sound or not)
+  uint64_t bytes_decompressed = 0; // output produced by the decoders, summed
+  uint64_t largest_chunk_buffers = 0;  // compressed record + uncompressed buffer of one chunk
+};
+
 struct Schema {
   uint16_t id = 0;        // never 0 (0 means "no schema" in MCAP)
   std::string name;       // e.g. "mechsim::msg::CamState"
