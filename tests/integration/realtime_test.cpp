@@ -58,7 +58,6 @@ TEST_F(Realtime, EveryPublicationIsInTheLatenessHistogramAndThePngIsWritten) {
     EXPECT_EQ(counted, 501) << node;
     EXPECT_LE(f["lateness_median_s"].get<double>(), f["lateness_p99_s"].get<double>());
     EXPECT_LE(f["lateness_p99_s"].get<double>(), f["lateness_max_s"].get<double>() + 1e-6);
-    EXPECT_GE(f["period_jitter_std_s"].get<double>(), 0.0);
     EXPECT_GE(f["period_jitter_max_s"].get<double>(), f["period_jitter_std_s"].get<double>());
     EXPECT_TRUE(fs::exists(folder("rt") / (std::string(node) + ".lateness.png"))) << node;
   }

@@ -86,7 +86,7 @@ TEST(Composer, ReferenceOfTheCamPressMatchesTheClosedFormKinetostatics) {
     for (double edge : {45.0, 100.0, 120.0, 180.0, 210.0})
       if (std::abs(std::fmod(theta, 2 * kPi) - edge * kDeg) < 1e-9)
         error = std::min({error, std::abs(n[i] - normal(press_load(edge * kDeg - 1e-6))),
-                          std::abs(n[i] - normal(press_load(edge * kDeg)))});
+                          std::abs(n[i] - normal(press_load(edge * kDeg + 1e-6)))});
     worst_n = std::max(worst_n, error);
     largest_n = std::max(largest_n, std::abs(n[i]));
     worst_alpha = std::max(worst_alpha, std::abs(alpha_log[i] - alpha));
@@ -98,7 +98,7 @@ TEST(Composer, ReferenceOfTheCamPressMatchesTheClosedFormKinetostatics) {
   // The same formulas evaluated in another order: rounding only, far below 1e-9 of forces
   // of ~1e3 N (1e-9 rad, 1e-9 of torques of ~50 N m); a wrong wire, a load on the wrong
   // interval or a sign would be off by newtons.
-  EXPECT_GT(largest_n, 500.0);  // the comparison covers the loaded strokes
+  EXPECT_GT(largest_n, 400.0);  // the comparison covers the loaded strokes (N up to 438 N)
   EXPECT_LT(worst_n, 1e-9 * 1e3);
   EXPECT_LT(worst_alpha, 1e-9);
   EXPECT_LT(worst_torque, 1e-9 * 50);
