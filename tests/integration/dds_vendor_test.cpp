@@ -206,7 +206,7 @@ TEST_P(Seam, WaitReturnsOnDataOnWakeAndOnTimeout) {
       std::this_thread::sleep_for(std::chrono::milliseconds(50));
       poke();
     });
-    const bool woke = b_->wait(std::chrono::seconds(30));
+    const bool woke = b_->wait(std::chrono::seconds(5));  // false at the timeout (a lost first sample, below)
     other.join();
     return woke;
   };
