@@ -3,8 +3,8 @@
 //    cam_press across hosts on Cyclone, Fast DDS and mixed give node outputs byte-identical
 //    to the lossless single-host run (the speed under loss is measured by
 //    tools/bench-faults.sh, not asserted);
-//  - a host cut off for less than the partition grace: the run stalls, resumes and ends
-//    byte-identical; cut off for longer: the run ends with exit 1 naming the unreachable
+//  - a host cut off for less than the partition grace: the run stalls (not a byte more of
+//    output while the host is cut), resumes and ends byte-identical; cut off for longer: the run ends with exit 1 naming the unreachable
 //    participant and its host, and no node process is left on any host.
 // Label `faults` (root; run by .ci/run). Without root every test prints as skipped.
 #include "host_bed.h"
@@ -73,25 +73,28 @@ INSTANTIATE_TEST_SUITE_P(Scenes, UnderLoss,
                                            LossCase{"cam_press.yaml", kCam, "mixed", "2 s"}),
                          loss_case_name);
 
-// nc_slide_loop for 1 s of simulated time (40 000 steps, several seconds of wall time) with
-// the slide on host 3; host 3 is cut off once every node steps.
+// nc_slide_loop with the slide on host 3, paced at rtf 0.05 so that it goes on for at least
+// 6 s of wall time whatever the machine (0.3 s simulated; pacing changes no number:
+// Realtime.PacedAndLockStepRunsGiveBitIdenticalOutputs); host 3 is cut off once every node
+// steps. The amplifier runs on host 1 beside the launcher: its output log in the run
+// folder shows the run's progress while it goes on.
 class Partition : public HostBed {
  protected:
+  static constexpr const char* kEnd = "0.3 s";  // 12 000 steps
   pid_t start_long_run(const fs::path& runs) {
     start_agents(3);
     std::vector<std::string> argv{ip_command(), "netns", "exec", ns(1), kMechsim, "launch", kScenes + "nc_slide_loop.yaml",
-                                  "--runs-dir", runs.string(), "--no-plot", "--no-progress", "--end", "1 s",
+                                  "--runs-dir", runs.string(), "--no-plot", "--no-progress", "--end", kEnd,
+                                  "--mode", "realtime", "--rtf", "0.05",
                                   "--set", "dds.domain=" + std::to_string(kDomain)};
     for (int i = 0; i < 3; ++i)
       argv.insert(argv.end(), {"--set", "hosts.h" + std::to_string(i + 1) + ".address=" + address(i + 1), "--set",
                                "participants." + kNc[static_cast<std::size_t>(i)] + ".host=h" + std::to_string(i + 1)});
     const pid_t launcher = spawn(argv, runs.string() + ".log");
-    // Stepping: the node on host 3 has written a good part of its output log.
-    for (int i = 0; i < 300; ++i) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(50));
-      if (pids_in(ns(3)).size() >= 2 && slurp(runs.string() + ".log").find("folder") != std::string::npos) break;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+    // Stepping: the amplifier, which needs the slide's samples every step, has written
+    // 16 KiB of rows (a few hundred steps of 12 000). 120 s: a guard against a hang.
+    for (int i = 0; i < 6000 && output_bytes(runs, "servo") < 16384; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    EXPECT_GE(output_bytes(runs, "servo"), 16384u) << "the run did not step: " << slurp(runs.string() + ".log");
     return launcher;
   }
 };
@@ -99,16 +102,28 @@ class Partition : public HostBed {
 TEST_F(Partition, ACutShorterThanTheGraceStallsTheRunWhichEndsByteIdentical) {
   const fs::path single = dir_ / "single";
   const CommandResult one = run({kMechsim, "launch", kScenes + "nc_slide_loop.yaml", "--runs-dir", single.string(), "--no-plot",
-                                 "--no-progress", "--end", "1 s"},
+                                 "--no-progress", "--end", kEnd},
                                 single.string() + ".log", 240);
   ASSERT_EQ(one.exit_code, 0) << one.output;
   const fs::path runs = dir_ / "cut";
   const pid_t launcher = start_long_run(runs);
   cut_host(3);
-  std::this_thread::sleep_for(std::chrono::milliseconds(1000));  // default grace: 2 s
+  // The run stalls: lock-step, the amplifier cannot compute a step without the slide's
+  // sample. 0.3 s after the cut the rows it computed before are out (a step takes
+  // microseconds, its background writer drains at once); to the end of the cut (1 s, the
+  // default grace is 2 s) not one more byte. Unstalled it writes up to 0.7 s x 2 000
+  // steps/s x 48 bytes (the same test with the cut left out: 44.6 KiB).
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  const std::uintmax_t cut_early = output_bytes(runs, "servo");
+  std::this_thread::sleep_for(std::chrono::milliseconds(700));
+  const std::uintmax_t cut_late = output_bytes(runs, "servo");
   heal_host(3);
   const CommandResult r = wait_for(launcher, runs.string() + ".log", 240);
   ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(cut_late, cut_early) << "the run went on while host 3 was cut off";
+  // It was cut while running: the amplifier wrote most of its rows after the heal.
+  const std::uintmax_t total = fs::file_size(only_run_folder(single) / "servo.outputs.bin");
+  EXPECT_LT(cut_late, total / 2) << "the run was nearly over when host 3 was cut off";
   expect_identical_outputs(only_run_folder(single), only_run_folder(runs), kNc);
 }
 

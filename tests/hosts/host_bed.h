@@ -71,6 +71,18 @@ inline fs::path only_run_folder(const fs::path& runs) {
   return found.size() == 1 ? found[0] : fs::path();
 }
 
+// Bytes of <node>.outputs.bin in the run folder under `runs` so far (0 before it exists): a
+// node that runs beside the launcher shows the run's progress there while it goes on.
+inline std::uintmax_t output_bytes(const fs::path& runs, const std::string& node) {
+  std::error_code ec;
+  if (!fs::exists(runs, ec)) return 0;
+  for (const auto& e : fs::directory_iterator(runs, ec)) {
+    const auto size = fs::file_size(e.path() / (node + ".outputs.bin"), ec);
+    if (!ec) return size;
+  }
+  return 0;
+}
+
 // The bed and its agents, for one test: built in SetUp, removed in TearDown (and by the
 // ctest cleanup fixture `hosts_bed_cleanup` should this process be killed).
 class HostBed : public ::testing::Test {

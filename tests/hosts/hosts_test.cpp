@@ -101,7 +101,9 @@ TEST_F(HostBed, AKilledLauncherLeavesNothingRunningOnAnyHost) {
     running = pids_in(ns(2)).size() >= 2 && pids_in(ns(3)).size() >= 2 && slurp(runs.string() + ".log").find("waiting for the agents") != std::string::npos;
   }
   ASSERT_TRUE(running) << slurp(runs.string() + ".log");
-  std::this_thread::sleep_for(std::chrono::seconds(2));  // stepping by now
+  // Stepping: the amplifier beside the launcher has written 16 KiB of rows (120 s: a guard).
+  for (int i = 0; i < 6000 && output_bytes(runs, "servo") < 16384; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  ASSERT_GE(output_bytes(runs, "servo"), 16384u) << slurp(runs.string() + ".log");
   ::kill(launcher, SIGKILL);
   wait_for(launcher, "/dev/null", 5);
   // Host 1: its node dies with the launcher (PR_SET_PDEATHSIG); hosts 2, 3: their nodes end

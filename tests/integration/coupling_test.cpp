@@ -2,7 +2,8 @@
 // motor-spindle cut (config/scenes/nc_slide_loop_1ms.yaml), over DDS through `mechsim
 // launch`, against the monolithic reference with the amplifier sampled identically (issue 6
 // targets): stable at H = 1 ms, and at 250 us rise time and final position within 1 % and
-// the RMS position error below 1 % of the step.
+// the RMS position error below 1 % of the step; the bounds are the measured errors with a
+// stated margin, tight enough that the scheme with fewer torque levels fails them.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -38,21 +39,24 @@ TEST_F(InterfaceJacobianLoop, StableAtOneMillisecond) {
   EXPECT_EQ(s["steps"].get<long>(), 200);  // 0.2 s at 1 ms: the whole response and its settling
   const json& x = s["signals"]["slide.slide_position"];
   EXPECT_TRUE(x["finite"].get<bool>());
-  // Stable and close: the in-process study measured 0.002 % RMS at 1 ms; 1 % of the step
-  // (the target's accuracy bound at 250 us) is a generous ceiling a diverging or
-  // first-order run would exceed.
-  EXPECT_LT(x["rms_abs_error"].get<double>(), 0.01 * kStep);
+  // The same bounds as in process (nc_coupling_test.cpp, where they are argued): over DDS
+  // the run gives the in-process figures (RMS 0.0023 % of the step, rise -0.019 %); 2x and
+  // 3x that, below the 2-level (0.0080 %) and 1-level (0.018 % / +0.14 %) scheme's: a
+  // lost `levels` fails here too.
+  EXPECT_LT(x["rms_abs_error"].get<double>(), 5e-5 * kStep);
+  EXPECT_LT(std::abs(step_figure(s)["relative_difference"]["rise_time_s"].get<double>()), 6e-4);
 }
 
 TEST_F(InterfaceJacobianLoop, AccurateAt250Microseconds) {
   json s = launch("h250us", {"--step", "250 us", "--set", "servo.sample_time=250us"});
   ASSERT_FALSE(s.is_null());
   const json& step = step_figure(s);
-  // Issue 6: rise time and final position within 1 %, RMS position error below 1 % of the
-  // step, against the reference sampled identically at 250 us.
-  EXPECT_LT(step["relative_difference"]["rise_time_s"].get<double>(), 0.01);
-  EXPECT_LT(std::abs(step["final_value"].get<double>() - step["reference"]["final_value"].get<double>()), 0.01 * kStep);
-  EXPECT_LT(s["signals"]["slide.slide_position"]["rms_abs_error"].get<double>(), 0.01 * kStep);
+  // Issue 6 asks for rise time and final position within 1 % and an RMS position error
+  // below 1 % of the step; measured at the nodes' tolerance floor (RMS 0.0004 %, rise
+  // -0.0006 %): the bounds of nc_coupling_test.cpp, 5x that floor.
+  EXPECT_LT(std::abs(step["relative_difference"]["rise_time_s"].get<double>()), 1e-4);
+  EXPECT_LT(std::abs(step["final_value"].get<double>() - step["reference"]["final_value"].get<double>()), 5e-5 * kStep);
+  EXPECT_LT(s["signals"]["slide.slide_position"]["rms_abs_error"].get<double>(), 2e-5 * kStep);
   // The reference itself: the spec's step response (rise 34.4 ms continuous; sampling at
   // 250 us shifts it by about 0.2 %, coupling-facts.md), within 3 % as nc_loop_test allows.
   EXPECT_NEAR(step["reference"]["rise_time_s"].get<double>(), 0.0344, 0.03 * 0.0344);

@@ -7,7 +7,7 @@
 //  - concurrent runs on different vendor layouts do not see each other;
 //  - a Fast DDS node killed mid-run leaves no data-sharing segments behind.
 // Layouts that need a vendor this build left out are skipped; a launch asking for it is
-// refused instead (tested when the vendor is missing).
+// refused instead (missing_vendor_test, built where a vendor is missing).
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -198,18 +198,17 @@ TEST_P(Seam, WaitReturnsOnDataOnWakeAndOnTimeout) {
   while (b_->wait(std::chrono::milliseconds(1))) {
   }  // drain what discovery may have signalled
   EXPECT_FALSE(b_->wait(std::chrono::milliseconds(50)));
-  // A blocked wait returns well before its 5 s timeout when woken, or when a sample
-  // arrives 50 ms into it (a wake-up takes microseconds; the 4 s margin absorbs a busy
-  // machine, a missed notification would not).
+  // A blocked wait returns true when woken, or when a sample arrives 50 ms into it; a
+  // missed notification would leave it to its timeout, where it returns false (no
+  // stopwatch: the return value tells the two apart).
   auto returns_early = [&](const std::function<void()>& poke) {
     std::thread other([&] {
       std::this_thread::sleep_for(std::chrono::milliseconds(50));
       poke();
     });
-    const auto t0 = std::chrono::steady_clock::now();
-    const bool woke = b_->wait(std::chrono::seconds(5));
+    const bool woke = b_->wait(std::chrono::seconds(5));  // false at the timeout (a lost first sample, below)
     other.join();
-    return woke && std::chrono::steady_clock::now() - t0 < std::chrono::seconds(4);
+    return woke;
   };
   EXPECT_TRUE(returns_early([&] { b_->wake(); }));
   // Data: repeated until one is taken (the first sample after a match may be lost, and
@@ -241,10 +240,15 @@ TEST_P(Seam, FlushDoesNotWaitForAReaderThatIsGone) {
   reader.reset();
   b_.reset();
   writer->write({1, 1, 0.0}, std::vector<double>(5, 2.0));  // nobody can acknowledge it
-  const auto t0 = std::chrono::steady_clock::now();
-  writer->flush(std::chrono::seconds(10));
-  // 1 s is the Fast DDS bound; a flush that waited for the lease would take 10 s.
-  EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(4));
+  // Allowed a minute, the flush returns (the Fast DDS backend's bound is 1 s). Where the
+  // writer keeps counting the gone reader until its lease expires (a Fast DDS writer and a
+  // Cyclone reader, 10 s), it must still count it when the flush returns: a flush that
+  // waited for the lease returns only once the reader is unmatched. No stopwatch.
+  const bool counted_until_lease = std::string(GetParam().writer) == "fastdds" && std::string(GetParam().reader) == "cyclone";
+  writer->flush(std::chrono::seconds(60));
+  if (counted_until_lease) {
+    EXPECT_EQ(writer->matched_readers(), 1) << "the flush waited until the gone reader's lease expired";
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Vendors, Seam,
@@ -512,10 +516,9 @@ TEST_F(VendorRuns, RecordingOfAMixedRunHoldsEveryVendorsSamples) {
 }
 
 // Every shipped scene, on every layout, bit-identical. About 45 runs (2-3 min on 2 cores):
-// label `interop` (docs/testing.md), skipped in the default run, where the cam press and the
-// NC loop above stand for the rest.
+// its own ctest entry, label `interop` (tests/integration/CMakeLists.txt), which .ci/run runs
+// after the default run; left out of the default run's listing of this suite.
 TEST_F(VendorRuns, EveryShippedSceneIsBitIdenticalOnEveryLayout) {
-  if (!std::getenv("MECHSIM_INTEROP_ALL")) GTEST_SKIP() << "set MECHSIM_INTEROP_ALL=1 (ctest -L interop)";
   REQUIRE_LAYOUT("mixed");
   std::vector<fs::path> scenes;
   for (const auto& e : fs::recursive_directory_iterator(kScenes))
@@ -550,19 +553,6 @@ TEST_F(VendorRuns, EveryShippedSceneIsBitIdenticalOnEveryLayout) {
   }
   std::cout << "[ interop ] " << launched << " scenes bit-identical on cyclone, fastdds and mixed\n";
   EXPECT_GE(launched, 10);
-}
-
-// ---------------------------------------------------------------------------------------
-// A build without one vendor refuses a run that asks for it, by name.
-
-TEST_F(VendorRuns, ALayoutNeedingAMissingVendorIsRefused) {
-  const std::string missing = !compiled_in("fastdds") ? "fastdds" : !compiled_in("cyclone") ? "cyclone" : "";
-  if (missing.empty()) GTEST_SKIP() << "both vendors are compiled in";
-  CommandResult r = run(args("cam_press.yaml", "missing", {"--dds", missing}), log("missing"), 60);
-  EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.output.find("expected a DDS vendor compiled into this build, got '" + missing + "'"), std::string::npos)
-      << r.output;
-  EXPECT_FALSE(fs::exists(dir_ / "missing")) << "a refused scene must not create a run folder";
 }
 
 }  // namespace

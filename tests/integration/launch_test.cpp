@@ -119,20 +119,6 @@ TEST_F(Launch, TwoScenesAtTheSameTimeDoNotSeeEachOther) {
   EXPECT_NE(s["report"][1]["value"].get<double>(), f["report"][1]["value"].get<double>());
 }
 
-// Waits until the node's output log in the single run folder under <dir>/<tag> grows.
-bool wait_until_running(const fs::path& runs, const std::string& node, double timeout_s) {
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
-  while (std::chrono::steady_clock::now() < deadline) {
-    if (fs::exists(runs))
-      for (const auto& e : fs::directory_iterator(runs)) {
-        auto f = e.path() / (node + ".outputs.bin");
-        if (fs::exists(f) && fs::file_size(f) > 10000) return true;
-      }
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  return false;
-}
-
 pid_t node_pid(const fs::path& runs, const std::string& node) {
   auto pids = processes_mentioning("--node " + node + " --run-id");
   for (pid_t p : pids)
@@ -142,12 +128,13 @@ pid_t node_pid(const fs::path& runs, const std::string& node) {
 
 TEST_F(Launch, ANodeKilledMidRunStopsTheRunAndIsNamed) {
   pid_t launcher = spawn(launch_args("k", {"--end", "600 s"}), log("k"));
-  ASSERT_TRUE(wait_until_running(dir_ / "k", "follower", 30));
+  ASSERT_TRUE(wait_for_output_bytes("k", "follower", 10000, 120));
   pid_t follower = node_pid(dir_ / "k", "follower");
   ASSERT_GT(follower, 0);
   ::kill(follower, SIGKILL);
-  // "within a few seconds": the exit is seen at once; stopping the cam takes < 2 s grace.
-  CommandResult r = wait_for(launcher, log("k"), 10);
+  // The exit is seen at once; stopping the cam takes < 2 s grace (60 s: a guard against a
+  // hang, not a measurement).
+  CommandResult r = wait_for(launcher, log("k"), 60);
   ASSERT_FALSE(r.timed_out) << r.output;
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.output.find("node 'follower' killed by signal 9"), std::string::npos) << r.output;
@@ -160,11 +147,11 @@ TEST_F(Launch, ANodeKilledMidRunStopsTheRunAndIsNamed) {
 
 TEST_F(Launch, AHungNodeIsDetectedAndEverythingStops) {
   pid_t launcher = spawn(launch_args("h", {"--end", "600 s", "--set", "hang_timeout=1 s"}), log("h"));
-  ASSERT_TRUE(wait_until_running(dir_ / "h", "cam", 30));
+  ASSERT_TRUE(wait_for_output_bytes("h", "cam", 10000, 120));
   pid_t cam = node_pid(dir_ / "h", "cam");
   ASSERT_GT(cam, 0);
   ::kill(cam, SIGSTOP);  // alive but silent: only the missing heartbeat tells
-  CommandResult r = wait_for(launcher, log("h"), 15);
+  CommandResult r = wait_for(launcher, log("h"), 60);  // a guard against a hang
   ASSERT_FALSE(r.timed_out) << r.output;
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.output.find("node 'cam' hung"), std::string::npos) << r.output;
@@ -176,9 +163,9 @@ TEST_F(Launch, AHungNodeIsDetectedAndEverythingStops) {
 
 TEST_F(Launch, CtrlCStopsEveryProcessCleanly) {
   pid_t launcher = spawn(launch_args("c", {"--end", "600 s"}), log("c"));
-  ASSERT_TRUE(wait_until_running(dir_ / "c", "follower", 30));
+  ASSERT_TRUE(wait_for_output_bytes("c", "follower", 10000, 120));
   ::kill(launcher, SIGINT);
-  CommandResult r = wait_for(launcher, log("c"), 10);
+  CommandResult r = wait_for(launcher, log("c"), 60);  // a guard against a hang
   ASSERT_FALSE(r.timed_out) << r.output;
   EXPECT_EQ(r.exit_code, 130) << r.output;
 }
@@ -188,11 +175,12 @@ TEST_F(Launch, CtrlCStopsEveryProcessCleanly) {
 // whole row, a recording that `mechsim record --recover` completes.
 TEST_F(Launch, AKilledLauncherLeavesAReadableRunFolderAndNoProcess) {
   pid_t launcher = spawn(launch_args("k", {"--end", "600 s", "--set", "record=true"}), log("k"));
-  ASSERT_TRUE(wait_until_running(dir_ / "k", "follower", 30));
-  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  // Both nodes stepping, with rows on disk (the checks below read them back).
+  ASSERT_TRUE(wait_for_output_bytes("k", "follower", 10000, 120));
+  ASSERT_TRUE(wait_for_output_bytes("k", "cam", 10000, 120));
   ::kill(launcher, SIGKILL);
   wait_for(launcher, log("k"), 10);
-  for (int i = 0; i < 100 && !processes_mentioning(dir_.string()).empty(); ++i)
+  for (int i = 0; i < 600 && !processes_mentioning(dir_.string()).empty(); ++i)  // up to 30 s: a guard
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   EXPECT_TRUE(processes_mentioning(dir_.string()).empty()) << "the nodes outlived their launcher";
   const fs::path folder = run_folder("k");

@@ -3,7 +3,6 @@
 // monolithic reference built from the same blocks; the energy balance of the run summary.
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -25,16 +24,12 @@ const json& figure(const json& s, const std::string& stat, const std::string& si
 }
 
 TEST_F(PressLine, EnergyBalanceClosesAndTheRunMatchesTheReference) {
-  const auto start = std::chrono::steady_clock::now();
   CommandResult r = run(launch_args(scene_path("press_line.yaml"), "a"), log("a"), 120);
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const json s = summary("a");
   EXPECT_EQ(s["status"], "ok");
   EXPECT_EQ(s["steps"], 2000);
-  // Three processes, a few cam revolutions: the whole launch (start-up with the belt-map
-  // tables, the run, the reference) stays well inside the 30 s.
-  EXPECT_LT(wall, 30.0);
+  // How long the launch takes is measured by tools/bench-lockstep.sh, not asserted here.
 
   // Energy: motor work = belt and bearing losses + press work + change of the kinetic
   // (CVT shafts, cam shaft and flywheel, follower) and spring energy.

@@ -53,6 +53,30 @@ class RunFolderTest : public ::testing::Test {
     for (const auto& e : std::filesystem::directory_iterator(dir_ / tag)) return e.path();
     return {};
   }
+  // Waits until <node>.outputs.bin in the run folder under <dir>/<tag> holds at least
+  // `bytes` bytes (rows the node has written: the event a test needs, e.g. "the run is
+  // stepping" or "it is past t"). False when `alive` (the launcher) ended first or after
+  // `timeout_s`, a guard against a hang and not a measurement.
+  bool wait_for_output_bytes(const std::string& tag, const std::string& node, std::uintmax_t bytes, double timeout_s,
+                             pid_t alive = 0) const {
+    const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+    while (std::chrono::steady_clock::now() < until) {
+      std::error_code ec;
+      if (std::filesystem::exists(dir_ / tag, ec))
+        for (const auto& e : std::filesystem::directory_iterator(dir_ / tag, ec)) {
+          const auto size = std::filesystem::file_size(e.path() / (node + ".outputs.bin"), ec);
+          if (!ec && size >= bytes) return true;
+        }
+      if (alive > 0 && has_exited(alive)) return false;
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    return false;
+  }
+  // True once the child `pid` has exited (it is left to wait_for to reap).
+  static bool has_exited(pid_t pid) {
+    siginfo_t info{};
+    return ::waitid(P_PID, static_cast<id_t>(pid), &info, WEXITED | WNOHANG | WNOWAIT) == 0 && info.si_pid == pid;
+  }
   std::filesystem::path dir_;
 };
 

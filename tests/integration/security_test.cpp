@@ -84,6 +84,50 @@ class Security : public RunFolderTest {
       EXPECT_TRUE(first == slurp((run_folder(b) / file).string())) << file << " differs between " << a << " and " << b;
     }
   }
+
+  // A secured run with an outsider beside it that goes on until the test stops it, whatever
+  // the machine's speed: paced at rtf 0.1 with its end 600 s away (1 h 40 min of wall time),
+  // it is stopped with SIGINT once every node has written all the rows of the plain run
+  // (`kEnd` simulated: at least 3 s of wall time at rtf 0.1, during which the outsider writes).
+  // Pacing changes no number (Realtime.PacedAndLockStepRunsGiveBitIdenticalOutputs): the
+  // plain run's output files are the first bytes of the secured run's.
+  static constexpr const char* kEnd = "0.3 s";  // 12 000 steps
+  void run_plain() {
+    const CommandResult plain = run(run_args("plain", "cyclone", false, {"--end", kEnd}), log("plain"));
+    ASSERT_EQ(plain.exit_code, 0) << plain.output;
+  }
+  pid_t spawn_secured(int domain_id) {
+    return spawn(run_args("secured", "cyclone", true,
+                          {"--end", "600 s", "--mode", "realtime", "--rtf", "0.1", "--set", "dds.domain=" + std::to_string(domain_id)}),
+                 log("secured"));
+  }
+  // True once every node of the secured run has written at least `fraction` of the plain
+  // run's output bytes (false when the run ended first: it failed).
+  bool wait_secured_past(double fraction, pid_t launcher) {
+    for (const char* node : {"servo", "tacho", "slide"}) {
+      const auto plain = fs::file_size(run_folder("plain") / (std::string(node) + ".outputs.bin"));
+      if (!wait_for_output_bytes("secured", node, static_cast<std::uintmax_t>(fraction * static_cast<double>(plain)), 300, launcher))
+        return false;
+    }
+    return true;
+  }
+  // Stops the run (SIGINT: exit code 130, "interrupted") and checks that it failed for no
+  // other reason and that every node's outputs begin with the plain run's bytes.
+  void stop_and_compare(pid_t launcher) {
+    ::kill(launcher, SIGINT);
+    const CommandResult secured = wait_for(launcher, log("secured"), 60);
+    EXPECT_EQ(secured.exit_code, 130) << secured.output;
+    EXPECT_NE(secured.output.find("run failed: interrupted by signal"), std::string::npos) << secured.output;
+    EXPECT_EQ(secured.output.find("foreign"), std::string::npos) << secured.output;
+    for (const char* node : {"servo", "tacho", "slide"}) {
+      const std::string file = std::string(node) + ".outputs.bin";
+      const std::string plain = slurp((run_folder("plain") / file).string());
+      const std::string paced = slurp((run_folder("secured") / file).string());
+      EXPECT_GT(plain.size(), 1000u) << file;
+      EXPECT_TRUE(paced.size() >= plain.size() && paced.compare(0, plain.size(), plain) == 0)
+          << file << ": the secured run's first " << plain.size() << " bytes differ from the plain run's";
+    }
+  }
   static fs::path folders_;
 };
 fs::path Security::folders_;
@@ -148,77 +192,76 @@ TEST_F(Security, AnAdaptiveRunIsSecuredWithItsStepTopics) {
 // Outsiders.
 
 // Acts as the run's servo amplifier would: reads tacho/state and writes forged
-// servo/command samples, for as long as the launcher runs; returns what it saw.
+// servo/command samples until told to stop; returns what it saw. `forged` counts the
+// samples written so far (the test reads it while the run goes on).
 struct OutsiderReport {
   int samples_read = 0;
   int max_matched_writers = 0, max_matched_readers = 0;
-  int forged_written = 0;
-  double seconds_alongside = 0;
 };
 
-OutsiderReport act_as_outsider(transport::Participant& participant, std::atomic<bool>& launcher_done) {
+OutsiderReport act_as_outsider(transport::Participant& participant, const std::atomic<bool>& stop, std::atomic<int>& forged) {
   OutsiderReport report;
   const transport::TopicType* type = transport::find_topic_type("ServoCommand");
   auto reader = participant.create_reader("tacho/state", *transport::find_topic_type("TachoState"));
   auto writer = participant.create_writer("servo/command", *type);
-  std::vector<double> forged(type->fields.size(), 1e6);
+  std::vector<double> values(type->fields.size(), 1e6);
   transport::SampleHeader h;
-  std::vector<double> values;
-  const auto start = std::chrono::steady_clock::now();
-  for (std::uint64_t k = 0; !launcher_done.load(); ++k) {
-    while (reader->take(h, values)) ++report.samples_read;
+  std::vector<double> read;
+  for (std::uint64_t k = 0; !stop.load(); ++k) {
+    while (reader->take(h, read)) ++report.samples_read;
     report.max_matched_writers = std::max(report.max_matched_writers, reader->matched_writers());
     report.max_matched_readers = std::max(report.max_matched_readers, writer->matched_readers());
-    writer->write({0, k, 0.0}, forged);
-    ++report.forged_written;
+    writer->write({0, k, 0.0}, values);
+    ++forged;
     participant.wait(std::chrono::milliseconds(5));
   }
-  report.seconds_alongside = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return report;
 }
 
 TEST_F(Security, ParticipantsWithoutAValidIdentitySeeNothingAndChangeNothing) {
   if (!compiled_in("cyclone")) GTEST_SKIP() << "the outsiders are Cyclone DDS participants";
-  // 0.3 s simulated (12 000 steps): some seconds of secured run for the outsiders to try.
-  const CommandResult plain = run(run_args("plain", "cyclone", false, {"--end", "0.3 s"}), log("plain"));
-  ASSERT_EQ(plain.exit_code, 0) << plain.output;
-
+  run_plain();
+  if (HasFatalFailure()) return;
   launch::DomainLock domain = launch::DomainLock::acquire();
   // Another CA's "servo": a well-formed identity with the permissions of the run's own
   // servo, which the run's CA did not sign.
   auto foreign = transport::create_participant("cyclone", domain.domain_id(), transport::SecurityIdentity{other(), "servo"});
-  const pid_t launcher = spawn(run_args("secured", "cyclone", true, {"--end", "0.3 s", "--set", "dds.domain=" + std::to_string(domain.domain_id())}),
-                               log("secured"));
-  std::atomic<bool> done{false};
+  const pid_t launcher = spawn_secured(domain.domain_id());
+  std::atomic<bool> stop{false};
+  std::atomic<int> forged{0};
   OutsiderReport seen;
-  std::thread outsider([&] { seen = act_as_outsider(*foreign, done); });
-  const CommandResult secured = wait_for(launcher, log("secured"), 120);
-  done = true;
+  std::thread outsider([&] { seen = act_as_outsider(*foreign, stop, forged); });
+  // Stepping (a tenth of the plain run's rows), then past the plain run's end: the
+  // outsider wrote in between, while the compared rows were computed.
+  const bool stepping = wait_secured_past(0.1, launcher);
+  const int forged_while_stepping = forged.load();
+  const bool past = stepping && wait_secured_past(1.0, launcher);
+  const int forged_past = forged.load();
+  stop_and_compare(launcher);
+  stop = true;
   outsider.join();
-  ASSERT_EQ(secured.exit_code, 0) << secured.output;
-  EXPECT_GT(seen.seconds_alongside, 1.0) << "the outsider must have been there while the run went on";
-  EXPECT_GT(seen.forged_written, 50);
+  ASSERT_TRUE(past) << "the secured run ended before it was told to";
+  EXPECT_GT(forged_past, forged_while_stepping) << "the outsider must have written while the run went on";
   EXPECT_EQ(seen.samples_read, 0);
   EXPECT_EQ(seen.max_matched_writers, 0);
   EXPECT_EQ(seen.max_matched_readers, 0);
-  EXPECT_EQ(secured.output.find("foreign"), std::string::npos) << secured.output;
-  expect_identical_outputs("plain", "secured");
 }
 
 TEST_F(Security, AnUnsecuredParticipantSeesNothingAndChangesNothing) {
   if (!compiled_in("cyclone")) GTEST_SKIP() << "the outsider is a Cyclone DDS participant";
-  const CommandResult plain = run(run_args("plain", "cyclone", false, {"--end", "0.5 s"}), log("plain"));
-  ASSERT_EQ(plain.exit_code, 0) << plain.output;
+  run_plain();
+  if (HasFatalFailure()) return;
   launch::DomainLock domain = launch::DomainLock::acquire();
   auto unsecured = transport::create_participant("cyclone", domain.domain_id(), std::nullopt);
-  const pid_t launcher = spawn(run_args("secured", "cyclone", true, {"--end", "0.5 s", "--set", "dds.domain=" + std::to_string(domain.domain_id())}),
-                               log("secured"));
-  std::atomic<bool> done{false};
+  const pid_t launcher = spawn_secured(domain.domain_id());
+  std::atomic<bool> stop{false};
+  std::atomic<int> forged{0};
   OutsiderReport seen;
-  std::thread outsider([&] { seen = act_as_outsider(*unsecured, done); });
-  // `mechsim topic list` beside it: with the observer identity it sees the run's topics,
-  // without one none of them (docs/security.md, 'Which tools get an identity').
-  std::this_thread::sleep_for(std::chrono::milliseconds(1000));
+  std::thread outsider([&] { seen = act_as_outsider(*unsecured, stop, forged); });
+  // `mechsim topic list` beside it once it steps: with the observer identity it sees the
+  // run's topics, without one none of them (docs/security.md, 'Which tools get an identity').
+  const bool stepping = wait_secured_past(0.1, launcher);
+  const int forged_while_stepping = forged.load();
   const std::vector<std::string> list{kMechsim, "topic", "list", "--domain", std::to_string(domain.domain_id()), "--wait", "1.5"};
   ::setenv(transport::kSecurityDirEnv, sec().c_str(), 1);
   ::setenv(transport::kSecurityIdentityEnv, "observer", 1);
@@ -226,25 +269,26 @@ TEST_F(Security, AnUnsecuredParticipantSeesNothingAndChangesNothing) {
   ::unsetenv(transport::kSecurityDirEnv);
   ::unsetenv(transport::kSecurityIdentityEnv);
   const CommandResult unobserved = run(list, log("unsecured-list"), 30);
-  // Still running (not a zombie) after both lists: they saw the run, not its remains.
-  const std::string stat = slurp("/proc/" + std::to_string(launcher) + "/stat");
-  const bool still_running = stat.size() > stat.rfind(')') + 2 && stat[stat.rfind(')') + 2] != 'Z';
-  const CommandResult secured = wait_for(launcher, log("secured"), 120);
+  // The run goes on until it is stopped: both lists saw the run, not its remains.
+  const bool still_running = !has_exited(launcher);
+  const bool past = stepping && still_running && wait_secured_past(1.0, launcher);
+  const int forged_past = forged.load();
+  stop_and_compare(launcher);
+  stop = true;
+  outsider.join();
+  ASSERT_TRUE(stepping) << "the secured run ended before it stepped";
   EXPECT_TRUE(still_running) << "the run must still have been going while both listed";
+  ASSERT_TRUE(past) << "the secured run ended before it was told to";
   EXPECT_NE(observed.output.find("servo/command"), std::string::npos) << observed.output;
   // Unsecured, it sees only the other unsecured participant here (the outsider's two
   // endpoints), none of the run's.
   EXPECT_EQ(unobserved.output.find("mechsim/control"), std::string::npos) << unobserved.output;
   EXPECT_EQ(unobserved.output.find("slide/state"), std::string::npos) << unobserved.output;
   EXPECT_NE(observed.output.find("mechsim/control"), std::string::npos) << observed.output;
-  done = true;
-  outsider.join();
-  ASSERT_EQ(secured.exit_code, 0) << secured.output;
-  EXPECT_GT(seen.seconds_alongside, 1.0);
+  EXPECT_GT(forged_past, forged_while_stepping) << "the outsider must have written while the run went on";
   EXPECT_EQ(seen.samples_read, 0);
   EXPECT_EQ(seen.max_matched_writers, 0);
   EXPECT_EQ(seen.max_matched_readers, 0);
-  expect_identical_outputs("plain", "secured");
 }
 
 // A valid identity (the run's own "servo") is refused what its permissions do not grant:

@@ -8,7 +8,7 @@
 
 #include <cmath>
 #include <cstdlib>
-#include <sstream>
+#include <stdexcept>
 
 #include "in_process_run.h"
 #include "mechsim/cosim/stepped_run.h"
@@ -28,16 +28,25 @@ struct Figures {
 
 // The shipped 1 ms scene text with the cut's scheme replaced: "interface_jacobian" (as
 // shipped) or "compliant" with the given reconstruction on both directions of the cut.
-std::string nc_scene(const std::string& scheme, const std::string& reconstruction = "linear") {
+// `text` with `from` replaced by `to`; throws naming `from` when the shipped scene no longer
+// has it (a test that silently ran the shipped scheme would measure the wrong thing).
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  if (at == std::string::npos) throw std::logic_error("nc_slide_loop_1ms.yaml has no '" + from + "'");
+  return text.replace(at, from.size(), to);
+}
+
+// `levels`: the interface-Jacobian scheme with that many torque levels per step (the
+// shipped scene has 10).
+std::string nc_scene(const std::string& scheme, const std::string& reconstruction = "linear", int levels = 10) {
   std::string text = testing::read_file(testing::shipped_scene("nc_slide_loop_1ms.yaml"));
-  if (scheme == "interface_jacobian") return text;
   const std::string cut = "scheme: interface_jacobian, levels: 10,";
-  text.replace(text.find(cut), cut.size(), "scheme: " + scheme + ",");
-  const std::string conn = "  - {from: tacho, to: slide,\n";
-  text.replace(text.find(conn), conn.size(),
-               "  - {from: slide, to: tacho, order: jacobi, reconstruction: " + reconstruction + "}\n"
-               "  - {from: tacho, to: slide, order: jacobi, reconstruction: " + reconstruction + ",\n");
-  return text;
+  if (scheme == "interface_jacobian")
+    return levels == 10 ? text : replaced(text, cut, "scheme: interface_jacobian, levels: " + std::to_string(levels) + ",");
+  text = replaced(text, cut, "scheme: " + scheme + ",");
+  return replaced(text, "  - {from: tacho, to: slide,\n",
+                  "  - {from: slide, to: tacho, order: jacobi, reconstruction: " + reconstruction + "}\n"
+                  "  - {from: tacho, to: slide, order: jacobi, reconstruction: " + reconstruction + ",\n");
 }
 
 // The scene at macro step h (amplifier sampled at h too), with extra overrides. `step`: the
@@ -78,21 +87,48 @@ Figures run_nc(const std::string& h, std::vector<std::string> overrides = {},
   return f;
 }
 
+// The interface-Jacobian accuracy bounds: each is the error measured here (docs/nc-loop.md,
+// "Measured on the NC loop") times a stated margin, below what the scheme with fewer torque
+// levels gives, so that a scheme that lost its `levels` (or fell back to one level, a
+// first-order torque over the step) fails them (NcCoupling.FewerLevelsFailTheBoundsAtOneMillisecond).
+// 1 ms: RMS 0.0023 % of the step, rise -0.019 %. Margin 2x on the RMS (the nodes' CVODE
+// tolerance puts a floor of ~0.0004 % under it and moves it by a few 1e-4 %), 3x on the
+// rise error; 2 levels give 0.0080 % / +0.037 %, 1 level 0.018 % / +0.14 %.
+constexpr double kRmsAt1ms = 5e-5, kRiseAt1ms = 6e-4;
+// 250 us: at the tolerance floor (RMS 0.0004 %, rise -0.0006 %, final below 0.001 %): 5x the
+// floor. The issue-6 targets (1 % each) lie far above.
+constexpr double kRmsAt250us = 2e-5, kRiseAt250us = 1e-4, kFinalAt250us = 5e-5;
+
 TEST(NcCoupling, InterfaceJacobianIsStableAtOneMillisecondAndAccurateAt250us) {
-  // Issue 6 targets. 1 ms: stable (the divergence guard watches every output over 0.2 s:
-  // the whole step response and settling); and the figures still close, since the
-  // sampled reference itself changes by 0.7 % at 1 ms (coupling-facts.md) and the scheme
-  // adds far less: 1 % bounds both.
+  // 1 ms: stable (the divergence guard watches every output over 0.2 s: the whole step
+  // response and settling).
   const Figures at_1ms = run_nc("1ms");
   ASSERT_TRUE(at_1ms.stable);
-  EXPECT_LT(at_1ms.rms_error, 0.01);
-  // 250 us: rise time and final position within 1 %, RMS position error below 1 % of the
-  // step against the reference sampled identically.
+  EXPECT_LT(at_1ms.rms_error, kRmsAt1ms);
+  EXPECT_LT(std::abs(at_1ms.rise_error), kRiseAt1ms);
   const Figures at_250us = run_nc("250us");
   ASSERT_TRUE(at_250us.stable);
-  EXPECT_LT(std::abs(at_250us.rise_error), 0.01);
-  EXPECT_LT(std::abs(at_250us.final_error), 0.01);
-  EXPECT_LT(at_250us.rms_error, 0.01);
+  EXPECT_LT(std::abs(at_250us.rise_error), kRiseAt250us);
+  EXPECT_LT(std::abs(at_250us.final_error), kFinalAt250us);
+  EXPECT_LT(at_250us.rms_error, kRmsAt250us);
+}
+
+// What the bounds above guard: with 2 torque levels per step and with 1 the same run at
+// 1 ms is stable but less accurate (docs/nc-loop.md: 0.0080 % and 0.018 % RMS), and each
+// fails the shipped scheme's bound on the RMS or the rise time.
+TEST(NcCoupling, FewerLevelsFailTheBoundsAtOneMillisecond) {
+  const Figures ten = run_nc("1ms");
+  const Figures two = run_nc("1ms", {}, nc_scene("interface_jacobian", "", 2));
+  const Figures one = run_nc("1ms", {}, nc_scene("interface_jacobian", "", 1));
+  ASSERT_TRUE(ten.stable && two.stable && one.stable);
+  EXPECT_LT(ten.rms_error, two.rms_error);
+  EXPECT_LT(two.rms_error, one.rms_error);
+  for (const Figures* f : {&two, &one})
+    EXPECT_TRUE(f->rms_error > kRmsAt1ms || std::abs(f->rise_error) > kRiseAt1ms)
+        << "RMS " << f->rms_error << ", rise " << f->rise_error << " pass the 10-level bounds";
+  // The table's figures, to a factor 2 (the tolerance floor and the run's length).
+  EXPECT_NEAR(two.rms_error, 8.0e-5, 4e-5);
+  EXPECT_NEAR(one.rms_error, 1.8e-4, 9e-5);
 }
 
 TEST(NcCoupling, LinearExtrapolationOfTheCompliantCouplingDivergesAt250us) {
@@ -103,27 +139,6 @@ TEST(NcCoupling, LinearExtrapolationOfTheCompliantCouplingDivergesAt250us) {
   SteppedRun run(testing::write_scene(text), {"time.step=250us", "participants.servo.params.sample_time=250us"});
   run.advance(run.steps());
   EXPECT_TRUE(run.diverged().has_value());
-}
-
-// Measurement, not a check: MECHSIM_NC_SWEEP="1ms 500us 250us" prints the figures per step
-// (MECHSIM_NC_SCHEME, MECHSIM_NC_SET: the scheme and one more override).
-TEST(NcCoupling, Sweep) {
-  const char* steps = std::getenv("MECHSIM_NC_SWEEP");
-  if (!steps) GTEST_SKIP() << "set MECHSIM_NC_SWEEP to a list of macro steps";
-  // MECHSIM_NC_SCHEME: interface_jacobian (default), or "compliant <reconstruction>".
-  std::istringstream scheme(std::getenv("MECHSIM_NC_SCHEME") ? std::getenv("MECHSIM_NC_SCHEME") : "interface_jacobian");
-  std::string name, reconstruction = "linear";
-  scheme >> name >> reconstruction;
-  std::vector<std::string> overrides;
-  if (const char* o = std::getenv("MECHSIM_NC_SET")) {  // ';'-separated
-    std::istringstream list(o);
-    for (std::string one; std::getline(list, one, ';');) overrides.push_back(one);
-  }
-  std::istringstream in(steps);
-  for (std::string h; in >> h;) {
-    const Figures f = run_nc(h, overrides, nc_scene(name, reconstruction), 0.0);
-    if (!f.stable) std::printf("  H = %-7s  diverged\n", h.c_str());
-  }
 }
 
 }  // namespace

@@ -204,8 +204,20 @@ TEST(FlexibleFollowerSimulation, LiftOffSpeedBesideTheKinetostaticPrediction) {
   std::cout << "lift-off speed: kinetostatic " << kinetostatic.speed_rad_s << " rad/s at "
             << cam::rad_to_deg(kinetostatic.angle_rad) << " deg, flexible " << high << " rad/s at "
             << value(events.front(), "angle_deg") << " deg\n";
-  // The cam_jump scene (1.3× the kinetostatic speed) must lie above the flexible one.
-  EXPECT_LT(high, 1.3 * kinetostatic.speed_rad_s);
+  // Upper bound, as the distributed sweep asserts it (cam_lift_off_sweep_test.cpp): at the
+  // kinetostatic speed the rigid contact force just touches zero; the flexible follower's is
+  // that plus a vibration the C1 rise and the fall excite with either sign, so it lifts off
+  // at or below that speed (and the cam_jump scene, 1.3x, lies above it).
+  EXPECT_LE(high, kinetostatic.speed_rad_s);
+  // Lower bound: a lightly damped contact (zeta = 0.08) amplifies the inertia demand at most
+  // by its resonance peak 1/(2 zeta): no lift-off below w_kin / sqrt(1 + 1/(2 zeta)).
+  EXPECT_GT(high, kinetostatic.speed_rad_s / std::sqrt(1.0 + 1.0 / (2.0 * 0.08)));
+  // Measured: 7.66 rad/s (0.687 of the kinetostatic 11.155 rad/s; docs/cam-dynamics.md),
+  // first in the rise at 48.9 deg. The bisection resolves 0.011 rad/s (0.15 %) and the
+  // integrator's tolerance moves the event by far less: 2 %, over ten times that, holds the
+  // model's figure where the physical bracket above spans a factor 2.7.
+  EXPECT_NEAR(high, 7.66, 0.02 * 7.66);
+  EXPECT_NEAR(value(events.front(), "angle_deg"), 48.9, 2.0);
 }
 
 TEST(FlexibleFollowerSimulation, StiffContactKeepsBdfBounded) {

@@ -3,10 +3,7 @@
 // macro step against the linear analysis of the macro-step map, and both against the
 // limits measured before (docs/nc-loop.md) and against physics (the limit of an explicit
 // scheme on a spring cut scales with 1/omega). In process, a few seconds per scene.
-//
-// MECHSIM_STAB_SCENE=<scene under config/scenes> [MECHSIM_STAB_QUICK=1]
-// [MECHSIM_STAB_SET="k=v;k=v"] stability_test --gtest_filter=Stability.Explore prints the
-// table for any scene (skipped without the variable).
+// The table of any scene: `mechsim bench SCENE --stability [--quick] [--set k=v]`.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -126,17 +123,6 @@ TEST(Stability, BadSceneIsRefusedWithExitCode2) {
   o.set_overrides = {"time.step=-1 ms"};
   std::ostringstream text2;
   EXPECT_EQ(mechsim::bench::run_stability_bench(scene("nc_slide_loop.yaml"), o, text2), 2);
-}
-
-TEST(Stability, Explore) {
-  const char* s = std::getenv("MECHSIM_STAB_SCENE");
-  if (!s) GTEST_SKIP() << "set MECHSIM_STAB_SCENE to print the table of a scene";
-  std::vector<std::string> overrides;
-  if (const char* set = std::getenv("MECHSIM_STAB_SET")) {
-    std::stringstream ss(set);
-    for (std::string x; std::getline(ss, x, ';');) overrides.push_back(x);
-  }
-  bench(s, std::getenv("MECHSIM_STAB_QUICK") != nullptr, overrides);
 }
 
 }  // namespace
