@@ -42,27 +42,29 @@ TEST_F(PressLine, EnergyBalanceClosesAndTheRunMatchesTheReference) {
   // P'' ~ P/τ² for the forming stroke's τ ≈ 0.1 s that is ~1e-4·P·T/12, and 1e-4 of the
   // supplied work bounds it (measured 1.5e-5).
   EXPECT_LT(e["reference"]["relative_residual"].get<double>(), 1e-4);
-  // The co-simulation exchanges torques and inertias one macro step late (Jacobi, linear
-  // extrapolation): the CVT and the cam see each other's power at slightly different times,
-  // which is the residual. Second order in H: measured 3.0e-4 at 1 ms (1.4e-3 with a held
-  // exchange, 7e-4 at 0.5 ms held, i.e. first order as it should be); 1e-3 is the bound
-  // for the scene's scheme, a held (first-order) exchange would break it.
+  // The co-simulation exchanges the motion one macro step late (Jacobi, linear extrapolation;
+  // the torques and inertias within the step, Gauss-Seidel): the CVT and the cam see each
+  // other's power at slightly different times, which is the residual. Second order in H:
+  // measured 3.1e-4 at 1 ms (3.0e-4 with the other ordering; 1.4e-3 with a held exchange,
+  // 7e-4 at 0.5 ms held, i.e. first order as it should be); 1e-3 is the bound for the
+  // scene's scheme, a held (first-order) exchange would break it.
   EXPECT_LT(e["relative_residual"].get<double>(), 1e-3);
   // The work terms agree with the reference's to the same order (the ratio step and the
   // forming strokes happen at the same times in both).
   EXPECT_NEAR(supplied, e["reference"]["supplied_J"].get<double>(), 2e-3 * supplied);
 
   // Against the reference (errors relative to the reference's range over the run). Measured
-  // with linear extrapolation on the return edges: input speed 0.09 %, output speed and cam
-  // speed ~0.1 %, belt torque 3.5 % max (at the forming force's end, where T_C turns within
-  // a step) and 0.15 % rms. The bounds are 3x the measured values: a lost, doubled or
-  // reordered sample costs a whole step of the 60 N m torque swing and breaks them.
+  // with the follower first and the motion extrapolated linearly (the scene since issue 31;
+  // the other ordering gave belt torque 3.5 % max, the ratio step's transient crossed a step
+  // late): input speed 0.11 %, output speed and cam speed ~0.11 %, belt torque 0.16 % max and
+  // 0.03 % rms. The bounds are about 3x the measured values: a lost, doubled or reordered
+  // sample costs a whole step of the 60 N m torque swing and breaks them.
   const json& sig = s["signals"];
   EXPECT_LT(sig["cvt.input_speed"]["max_rel_error"].get<double>(), 3e-3);
   EXPECT_LT(sig["cam.speed"]["max_rel_error"].get<double>(), 1e-2);
   EXPECT_LT(sig["cvt.ratio_setting"]["max_rel_error"].get<double>(), 1e-3);
   EXPECT_LT(sig["cvt.belt_torque"]["rms_rel_error"].get<double>(), 5e-3);
-  EXPECT_LT(sig["cvt.belt_torque"]["max_rel_error"].get<double>(), 0.1);
+  EXPECT_LT(sig["cvt.belt_torque"]["max_rel_error"].get<double>(), 5e-3);
   EXPECT_LT(sig["follower.position"]["max_rel_error"].get<double>(), 1e-2);
 
   // The scene is designed to stay inside the thesis's model: positive T_C of 20-120 N m and

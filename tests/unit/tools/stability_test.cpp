@@ -40,6 +40,14 @@ json bench(const std::string& name, bool quick, std::vector<std::string> overrid
   return doc["rows"];
 }
 
+// The scheme nc_slide_loop.yaml shipped before issue 31 (held electrical edges, the cut
+// extrapolated linearly; the scene now extrapolates the edges linearly and the cut
+// quadratically): the one docs/nc-loop.md measured with DDS runs and the extreme/ scenes
+// still keep, so the tests below compare like with like.
+const std::vector<std::string> kHeldEdgesLinearCut{
+    "connections[0].reconstruction=hold", "connections[1].reconstruction=hold", "connections[2].reconstruction=hold",
+    "connections[3].reconstruction=linear", "connections[4].reconstruction=linear"};
+
 const json& row(const json& rows, const std::string& scheme) {
   for (const auto& r : rows)
     if (r["scheme"] == scheme) return r;
@@ -64,7 +72,7 @@ void expect_consistent(const json& r) {
 }
 
 TEST(Stability, NcLoopBisectionAgreesWithTheSpectralRadiusAndTheMeasuredLimit) {
-  const json rows = bench("nc_slide_loop.yaml", true);
+  const json rows = bench("nc_slide_loop.yaml", true, kHeldEdgesLinearCut);
   const json& linear = row(rows, "compliant, linear");
   const json& hold = row(rows, "compliant, hold");  // rows outlives both
   expect_consistent(linear);
@@ -87,7 +95,7 @@ TEST(Stability, TenTimesStifferCouplingLowersTheLimitAtLeastBySqrtTen) {
   // an extrapolated (or held) partner angle, an error C times larger, so the limit falls
   // faster than that (measured 4.7x for linear extrapolation, 11x for hold). The check: at
   // least sqrt(10), less 25 % for the loop around the cut.
-  const double base = row(bench("nc_slide_loop.yaml", true), "compliant, linear")["linear_analysis"]["rho_crossing_h_s"];
+  const double base = row(bench("nc_slide_loop.yaml", true, kHeldEdgesLinearCut), "compliant, linear")["linear_analysis"]["rho_crossing_h_s"];
   const json rows = bench("extreme/nc_stiff_coupling.yaml", true);
   const json& stiff = row(rows, "compliant, linear");
   expect_consistent(stiff);
@@ -104,7 +112,7 @@ TEST(Stability, CoulombFrictionLeavesTheLimitOfTheCut) {
   // loop, to the bisection's resolution (15 % in quick mode) either way. The linear
   // analysis linearises about the state a few steps into the run (slide still stuck); the
   // bracket must contain it as for a linear loop.
-  const json plain = bench("nc_slide_loop.yaml", true);
+  const json plain = bench("nc_slide_loop.yaml", true, kHeldEdgesLinearCut);
   const json rows = bench("extreme/nc_coulomb_friction.yaml", true);
   const json& r = row(rows, "compliant, linear");
   ASSERT_FALSE(r["stable_h_s"].is_null());
