@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # What DDS Security costs (docs/security.md): nc_slide_loop (3 nodes + launcher, 20 000
-# lock-step steps) unsecured and secured, per vendor layout, the variants taking turns inside
-# every repetition so the machine's load falls on all alike; prints the medians (and range)
-# as a Markdown table.
+# lock-step steps) unsecured, secured with `dds.protection: sign` and secured with
+# `encrypt` (the default), per vendor layout, the variants taking turns inside every
+# repetition so the machine's load falls on all alike; prints the medians (and range) as a
+# Markdown table.
 #   tools/bench-security.sh [RUNS] [BUILD_DIR] [LAYOUTS]     e.g. tools/bench-security.sh 5 build "cyclone fastdds"
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -20,9 +21,9 @@ unset CYCLONEDDS_URI FASTRTPS_DEFAULT_PROFILES_FILE MECHSIM_DDS_SECURITY MECHSIM
 : > "$tmp/results"
 for i in $(seq "$runs"); do
   for layout in $layouts; do
-    for variant in unsecured secured; do
+    for variant in unsecured sign encrypt; do
       extra=()
-      [ "$variant" = secured ] && extra=(--set "dds.security=$tmp/sec")
+      [ "$variant" != unsecured ] && extra=(--set "dds.security=$tmp/sec" --set "dds.protection=$variant")
       rate=failed
       if "$mechsim" launch "$scene" --end "0.5 s" --dds "$layout" "${extra[@]}" --no-plot --no-progress \
            --runs-dir "$tmp/runs" --json "$tmp/s.json" > "$tmp/launch.log" 2>&1; then
@@ -50,10 +51,10 @@ def cell(values):
     text = f"{statistics.median(ok):.0f} ({ok[0]:.0f}-{ok[-1]:.0f})" if ok else "-"
     return (text + (f", {failed} failed" if failed else "")), (statistics.median(ok) if ok else None)
 print(f"nc_slide_loop, steps per second, median of {runs} (min-max); 20 000 lock-step steps per run\n")
-print("| layout | unsecured | secured | secured / unsecured |")
-print("|---|---|---|---|")
+print("| layout | unsecured | sign | encrypt | sign / unsecured | encrypt / unsecured | encrypt / sign |")
+print("|---|---|---|---|---|---|---|")
 for layout, by in rates.items():
-    (u, um), (s, sm) = cell(by.get("unsecured", [])), cell(by.get("secured", []))
-    ratio = f"{sm / um:.2f}" if um and sm else "-"
-    print(f"| {layout} | {u} | {s} | {ratio} |")
+    (u, um), (s, sm), (e, em) = (cell(by.get(v, [])) for v in ("unsecured", "sign", "encrypt"))
+    ratio = lambda a, b: f"{a / b:.2f}" if a and b else "-"
+    print(f"| {layout} | {u} | {s} | {e} | {ratio(sm, um)} | {ratio(em, um)} | {ratio(em, sm)} |")
 PY

@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
+#include <string>
 
 #include "mechsim/cosim/step_topic.h"
 #include "mechsim/config/config_node.h"
@@ -169,10 +170,16 @@ std::string permissions_xml(const IdentityGrant& grant) {
          "</dds>\n";
 }
 
-std::string governance_xml() {
+std::string governance_xml(const std::string& protection) {
+  if (protection != transport::kProtectionEncrypt && protection != transport::kProtectionSign)
+    throw std::invalid_argument("governance_xml: protection '" + protection + "': expected encrypt or sign");
+  // Discovery, liveliness, submessages and payloads: all encrypted, or all signed (GMAC).
+  const std::string kind = protection == transport::kProtectionSign ? "SIGN" : "ENCRYPT";
   return std::string(
              "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
-             "<!-- mechsim security init: only authenticated participants join; everything encrypted (docs/security.md) -->\n"
+             "<!-- mechsim security init: only authenticated participants join; everything ") +
+         (protection == transport::kProtectionSign ? "signed, nothing encrypted" : "encrypted") +
+         " (dds.protection: " + protection + ", docs/security.md) -->\n"
              "<dds xmlns:xsi=\"http://www.w3.org/2001/XMLSchema-instance\" "
              "xsi:noNamespaceSchemaLocation=\"http://www.omg.org/spec/DDS-SECURITY/20170901/omg_shared_ca_governance.xsd\">\n"
              "  <domain_access_rules>\n"
@@ -182,8 +189,8 @@ std::string governance_xml() {
          "\n"
          "      <allow_unauthenticated_participants>false</allow_unauthenticated_participants>\n"
          "      <enable_join_access_control>true</enable_join_access_control>\n"
-         "      <discovery_protection_kind>ENCRYPT</discovery_protection_kind>\n"
-         "      <liveliness_protection_kind>ENCRYPT</liveliness_protection_kind>\n"
+         "      <discovery_protection_kind>" + kind + "</discovery_protection_kind>\n"
+         "      <liveliness_protection_kind>" + kind + "</liveliness_protection_kind>\n"
          "      <rtps_protection_kind>NONE</rtps_protection_kind>\n"
          "      <topic_access_rules>\n"
          "        <topic_rule>\n"
@@ -192,8 +199,8 @@ std::string governance_xml() {
          "          <enable_liveliness_protection>true</enable_liveliness_protection>\n"
          "          <enable_read_access_control>true</enable_read_access_control>\n"
          "          <enable_write_access_control>true</enable_write_access_control>\n"
-         "          <metadata_protection_kind>ENCRYPT</metadata_protection_kind>\n"
-         "          <data_protection_kind>ENCRYPT</data_protection_kind>\n"
+         "          <metadata_protection_kind>" + kind + "</metadata_protection_kind>\n"
+         "          <data_protection_kind>" + kind + "</data_protection_kind>\n"
          "        </topic_rule>\n"
          "      </topic_access_rules>\n"
          "    </domain_rule>\n"
@@ -213,8 +220,13 @@ void init_security_folder(const std::string& dir_text, const std::vector<Identit
              "/O=mechsim/CN=mechsim CA", "-addext", "basicConstraints=critical,CA:TRUE"});
     log << "security: new CA " << ca.string() << " (its key " << ca_key.string() << " signs identities: keep it off the nodes' machines)\n";
   }
-  write_file(dir / "governance.xml", governance_xml());
-  sign(dir, dir / "governance.xml", dir / "governance.p7s");
+  // One governance per protection: a scene's dds.protection chooses at run time.
+  for (const char* protection : {transport::kProtectionEncrypt, transport::kProtectionSign}) {
+    const fs::path p7s = transport::SecurityIdentity::governance_file(dir.string(), protection);
+    const fs::path xml = fs::path(p7s).replace_extension(".xml");
+    write_file(xml, governance_xml(protection));
+    sign(dir, xml, p7s);
+  }
   for (const auto& g : grants) {
     const fs::path id = dir / g.name;
     fs::create_directories(id);
