@@ -478,43 +478,42 @@ INSTANTIATE_TEST_SUITE_P(Vendors, SignedRun, ::testing::Values("cyclone", "fastd
                          [](const auto& info) { return info.param; });
 
 // Signing leaves the samples readable on the wire, not open to participants: an unsecured
-// participant and one certified by another CA, there from before the run starts until after
-// it ended, writing forged servo/command samples, match nothing and read nothing, and the
-// run ends ok and byte-identical (the same forgery fails an unsecured run: foreign_writer_test).
+// participant, there from before the run starts until after it ended, writing forged
+// servo/command samples, matches nothing and reads nothing, and the run ends ok and
+// byte-identical (the same forgery fails an unsecured run: foreign_writer_test). One
+// outsider per process: two Cyclone participants creating topics from two threads at once
+// crash Cyclone DDS 0.10 (dds_create_topic_impl).
 TEST_F(Security, ASignedRunAdmitsNoOutsider) {
-  if (!compiled_in("cyclone")) GTEST_SKIP() << "the outsiders are Cyclone DDS participants";
+  if (!compiled_in("cyclone")) GTEST_SKIP() << "the outsider is a Cyclone DDS participant";
   const CommandResult plain = run(run_args("plain", "cyclone", false, {"--end", "0.3 s"}), log("plain"));
   ASSERT_EQ(plain.exit_code, 0) << plain.output;
   launch::DomainLock domain = launch::DomainLock::acquire();
   auto unsecured = transport::create_participant("cyclone", domain.domain_id(), std::nullopt);
-  auto foreign = transport::create_participant("cyclone", domain.domain_id(), transport::SecurityIdentity{other(), "servo", "sign"});
   std::atomic<bool> done{false};
-  OutsiderReport seen_unsecured, seen_foreign;
-  // Both act before the launcher exists and until it has exited: alongside the whole run,
+  OutsiderReport seen;
+  // It acts before the launcher exists and until it has exited: alongside the whole run,
   // however fast this machine is.
-  std::thread a([&] { seen_unsecured = act_as_outsider(*unsecured, done); });
-  std::thread b([&] { seen_foreign = act_as_outsider(*foreign, done); });
+  std::thread outsider([&] { seen = act_as_outsider(*unsecured, done); });
   const CommandResult signed_run =
       run(run_args("signed", "cyclone", true,
                    {"--end", "0.3 s", "--set", "dds.protection=sign", "--set", "dds.domain=" + std::to_string(domain.domain_id())}),
           log("signed"), 120);
   done = true;
-  a.join();
-  b.join();
+  outsider.join();
   ASSERT_EQ(signed_run.exit_code, 0) << signed_run.output;
-  for (const OutsiderReport* seen : {&seen_unsecured, &seen_foreign}) {
-    EXPECT_GT(seen->forged_written, 0) << "the outsider must have written during the run";
-    EXPECT_EQ(seen->samples_read, 0);
-    EXPECT_EQ(seen->max_matched_writers, 0);
-    EXPECT_EQ(seen->max_matched_readers, 0);
-  }
+  EXPECT_GT(seen.forged_written, 0) << "the outsider must have written during the run";
+  EXPECT_EQ(seen.samples_read, 0);
+  EXPECT_EQ(seen.max_matched_writers, 0);
+  EXPECT_EQ(seen.max_matched_readers, 0);
   EXPECT_EQ(signed_run.output.find("foreign"), std::string::npos) << signed_run.output;
   expect_identical_outputs("plain", "signed");
 }
 
-// The two governance documents differ only in the protection kind: four ENCRYPT (discovery,
-// liveliness, submessages, payloads) or four SIGN, RTPS protection NONE in both; `security
-// init` writes both, signed, and the domains read back from the signed files are 0..230.
+// The two governance documents differ only in the protection kinds: four ENCRYPT (discovery,
+// liveliness, submessages, payloads), or three SIGN (discovery, liveliness, submessages,
+// which carry the payloads) and payload protection NONE, RTPS protection NONE in both;
+// `security init` writes both, signed, and the domains read back from the signed files are
+// 0..230.
 TEST_F(Security, SecurityInitWritesAGovernancePerProtection) {
   const auto count = [](const std::string& text, const std::string& what) {
     std::size_t n = 0;
@@ -524,7 +523,9 @@ TEST_F(Security, SecurityInitWritesAGovernancePerProtection) {
   const std::string encrypt = security::governance_xml("encrypt"), sign = security::governance_xml("sign");
   EXPECT_EQ(count(encrypt, ">ENCRYPT<"), 4u) << encrypt;
   EXPECT_EQ(count(encrypt, ">SIGN<"), 0u) << encrypt;
-  EXPECT_EQ(count(sign, ">SIGN<"), 4u) << sign;
+  EXPECT_EQ(count(sign, ">SIGN<"), 3u) << sign;
+  EXPECT_EQ(count(sign, "<metadata_protection_kind>SIGN<"), 1u) << sign;
+  EXPECT_EQ(count(sign, "<data_protection_kind>NONE<"), 1u) << sign;
   EXPECT_EQ(count(sign, "ENCRYPT"), 0u) << sign;
   EXPECT_EQ(count(sign, "<rtps_protection_kind>NONE<"), 1u) << sign;
   EXPECT_THROW(security::governance_xml("none"), std::invalid_argument);
@@ -532,7 +533,7 @@ TEST_F(Security, SecurityInitWritesAGovernancePerProtection) {
     const std::string file = transport::SecurityIdentity::governance_file(sec(), protection);
     const std::string p7s = slurp(file);
     EXPECT_NE(p7s.find("application/x-pkcs7-signature"), std::string::npos) << file;
-    EXPECT_NE(p7s.find(protection == std::string("sign") ? "<data_protection_kind>SIGN<" : "<data_protection_kind>ENCRYPT<"),
+    EXPECT_NE(p7s.find(protection == std::string("sign") ? "<metadata_protection_kind>SIGN<" : "<data_protection_kind>ENCRYPT<"),
               std::string::npos)
         << file;
     EXPECT_EQ(transport::describe(transport::governance_domains(file)), "0..230") << file;

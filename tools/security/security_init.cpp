@@ -174,19 +174,20 @@ std::string governance_xml(const std::string& protection) {
   if (protection != transport::kProtectionEncrypt && protection != transport::kProtectionSign)
     throw std::invalid_argument("governance_xml: protection '" + protection + "': expected encrypt or sign");
   // Discovery, liveliness, submessages and payloads: all encrypted, or all signed (GMAC).
-  const std::string kind = protection == transport::kProtectionSign ? "SIGN" : "ENCRYPT";
-  return std::string(
-             "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
-             "<!-- mechsim security init: only authenticated participants join; everything ") +
-         (protection == transport::kProtectionSign ? "signed, nothing encrypted" : "encrypted") +
-         " (dds.protection: " + protection + ", docs/security.md) -->\n"
-             "<dds xmlns:xsi=\"http://www.w3.org/2001/XMLSchema-instance\" "
-             "xsi:noNamespaceSchemaLocation=\"http://www.omg.org/spec/DDS-SECURITY/20170901/omg_shared_ca_governance.xsd\">\n"
-             "  <domain_access_rules>\n"
-             "    <domain_rule>\n"
-             "      ") +
-         kDomains +
-         "\n"
+  // Signed, the payload is signed as part of its DATA submessage (metadata protection), not
+  // once more by itself: Fast DDS 2.9 fails to decode a payload protected SIGN ("Error
+  // decoding encoded payload", nodes never ready), and one MAC over the submessage already
+  // covers the serialized payload (docs/security.md, 'Protection').
+  const bool sign = protection == transport::kProtectionSign;
+  const std::string kind = sign ? "SIGN" : "ENCRYPT", data_kind = sign ? "NONE" : "ENCRYPT";
+  return std::string("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n") +
+         "<!-- mechsim security init: only authenticated participants join; everything " +
+         (sign ? "signed, nothing encrypted" : "encrypted") + " (dds.protection: " + protection + ", docs/security.md) -->\n" +
+         "<dds xmlns:xsi=\"http://www.w3.org/2001/XMLSchema-instance\" "
+         "xsi:noNamespaceSchemaLocation=\"http://www.omg.org/spec/DDS-SECURITY/20170901/omg_shared_ca_governance.xsd\">\n"
+         "  <domain_access_rules>\n"
+         "    <domain_rule>\n"
+         "      " + kDomains + "\n"
          "      <allow_unauthenticated_participants>false</allow_unauthenticated_participants>\n"
          "      <enable_join_access_control>true</enable_join_access_control>\n"
          "      <discovery_protection_kind>" + kind + "</discovery_protection_kind>\n"
@@ -200,7 +201,7 @@ std::string governance_xml(const std::string& protection) {
          "          <enable_read_access_control>true</enable_read_access_control>\n"
          "          <enable_write_access_control>true</enable_write_access_control>\n"
          "          <metadata_protection_kind>" + kind + "</metadata_protection_kind>\n"
-         "          <data_protection_kind>" + kind + "</data_protection_kind>\n"
+         "          <data_protection_kind>" + data_kind + "</data_protection_kind>\n"
          "        </topic_rule>\n"
          "      </topic_access_rules>\n"
          "    </domain_rule>\n"

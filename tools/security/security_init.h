@@ -34,7 +34,8 @@ std::string permissions_xml(const IdentityGrant& grant);
 // The governance document (XML, unsigned) for a protection (transport::kProtectionEncrypt
 // or kProtectionSign): authentication required on domains 0..230, read and write access
 // control on, discovery, liveliness, submessages and payloads of every topic encrypted
-// (ENCRYPT) or signed (SIGN).
+// (ENCRYPT), or discovery, liveliness and submessages signed (SIGN; the payload is signed
+// inside its DATA submessage, data_protection_kind NONE).
 std::string governance_xml(const std::string& protection);
 
 // Writes DIR: ca.pem and ca_key.pem (kept when they exist, so identities can be added or
