@@ -1,6 +1,7 @@
 #include "run_security.h"
 
 #include <cstdlib>
+#include <filesystem>
 
 #include "domain_lock.h"
 #include "hosts.h"
@@ -35,10 +36,11 @@ std::vector<std::string> security_problems(const config::Scene& scene) {
       problems.push_back(scene.file + ": dds.security: " + why + (name == kLauncherIdentity ? "" : " (participant '" + name + "')") +
                          "; make the folder with `mechsim security init " + scene.security_dir + " " + scene.file +
                          "` (docs/security.md)");
-  if (problems.empty()) {
-    // The governance admits participants only on the domains its rule names: a run on
-    // another domain would fail when the launcher's participant is created.
-    const std::string governance = transport::SecurityIdentity::governance_file(scene.security_dir, scene.security_protection);
+  // The governance admits participants only on the domains its rule names: a run on another
+  // domain would fail when the launcher's participant is created. (A missing governance is
+  // named above.)
+  const std::string governance = transport::SecurityIdentity::governance_file(scene.security_dir, scene.security_protection);
+  if (std::error_code ec; std::filesystem::is_regular_file(governance, ec)) {
     try {
       const auto ranges = transport::governance_domains(governance);
       const std::string covered = transport::describe(ranges);
