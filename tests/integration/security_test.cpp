@@ -510,10 +510,10 @@ TEST_F(Security, ASignedRunAdmitsNoOutsider) {
 }
 
 // The two governance documents differ only in the protection kinds: four ENCRYPT (discovery,
-// liveliness, submessages, payloads), or three SIGN (discovery, liveliness, submessages,
-// which carry the payloads) and payload protection NONE, RTPS protection NONE in both;
-// `security init` writes both, signed, and the domains read back from the signed files are
-// 0..230.
+// liveliness, submessages, payloads) and RTPS protection NONE, or three SIGN (discovery,
+// liveliness, whole RTPS messages, which carry the submessages and payloads) and submessage
+// and payload protection NONE; `security init` writes both, signed, and the domains read
+// back from the signed files are 0..230.
 TEST_F(Security, SecurityInitWritesAGovernancePerProtection) {
   const auto count = [](const std::string& text, const std::string& what) {
     std::size_t n = 0;
@@ -523,17 +523,18 @@ TEST_F(Security, SecurityInitWritesAGovernancePerProtection) {
   const std::string encrypt = security::governance_xml("encrypt"), sign = security::governance_xml("sign");
   EXPECT_EQ(count(encrypt, ">ENCRYPT<"), 4u) << encrypt;
   EXPECT_EQ(count(encrypt, ">SIGN<"), 0u) << encrypt;
+  EXPECT_EQ(count(encrypt, "<rtps_protection_kind>NONE<"), 1u) << encrypt;
   EXPECT_EQ(count(sign, ">SIGN<"), 3u) << sign;
-  EXPECT_EQ(count(sign, "<metadata_protection_kind>SIGN<"), 1u) << sign;
+  EXPECT_EQ(count(sign, "<rtps_protection_kind>SIGN<"), 1u) << sign;
+  EXPECT_EQ(count(sign, "<metadata_protection_kind>NONE<"), 1u) << sign;
   EXPECT_EQ(count(sign, "<data_protection_kind>NONE<"), 1u) << sign;
   EXPECT_EQ(count(sign, "ENCRYPT"), 0u) << sign;
-  EXPECT_EQ(count(sign, "<rtps_protection_kind>NONE<"), 1u) << sign;
   EXPECT_THROW(security::governance_xml("none"), std::invalid_argument);
   for (const char* protection : {"encrypt", "sign"}) {
     const std::string file = transport::SecurityIdentity::governance_file(sec(), protection);
     const std::string p7s = slurp(file);
     EXPECT_NE(p7s.find("application/x-pkcs7-signature"), std::string::npos) << file;
-    EXPECT_NE(p7s.find(protection == std::string("sign") ? "<metadata_protection_kind>SIGN<" : "<data_protection_kind>ENCRYPT<"),
+    EXPECT_NE(p7s.find(protection == std::string("sign") ? "<rtps_protection_kind>SIGN<" : "<data_protection_kind>ENCRYPT<"),
               std::string::npos)
         << file;
     EXPECT_EQ(transport::describe(transport::governance_domains(file)), "0..230") << file;

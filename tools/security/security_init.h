@@ -34,8 +34,8 @@ std::string permissions_xml(const IdentityGrant& grant);
 // The governance document (XML, unsigned) for a protection (transport::kProtectionEncrypt
 // or kProtectionSign): authentication required on domains 0..230, read and write access
 // control on, discovery, liveliness, submessages and payloads of every topic encrypted
-// (ENCRYPT), or discovery, liveliness and submessages signed (SIGN; the payload is signed
-// inside its DATA submessage, data_protection_kind NONE).
+// (ENCRYPT), or discovery, liveliness and every RTPS message as a whole signed (SIGN:
+// rtps_protection_kind SIGN, metadata and data protection NONE).
 std::string governance_xml(const std::string& protection);
 
 // Writes DIR: ca.pem and ca_key.pem (kept when they exist, so identities can be added or
