@@ -118,12 +118,14 @@ class HostBed : public ::testing::Test {
   std::string address(int host) const { return "10.77.0." + std::to_string(host); }
 
   // An agent on each of hosts 2..last; the one on host 3 speaks Fast DDS itself (when built).
-  void start_agents(int last, double heartbeat_timeout_s = 3.0) {
+  // Each works in a folder of this bed's, or, with default_work_dirs, in the default one
+  // (as docs/hosts.md's example does: all on this machine's one filesystem).
+  void start_agents(int last, double heartbeat_timeout_s = 3.0, bool default_work_dirs = false) {
     for (int h = 2; h <= last; ++h) {
       std::vector<std::string> argv{ip_command(), "netns", "exec", ns(h), kMechsim, "agent", "--domain", std::to_string(kDomain),
                                     "--address", address(h), "--peers", address(1),
-                                    "--work-dir", (dir_ / ("agent" + std::to_string(h))).string(),
                                     "--heartbeat-timeout", std::to_string(heartbeat_timeout_s)};
+      if (!default_work_dirs) argv.insert(argv.end(), {"--work-dir", (dir_ / ("agent" + std::to_string(h))).string()});
       if (h == 3 && compiled_in("fastdds")) argv.insert(argv.end(), {"--dds", "fastdds"});
       agents_.push_back(spawn(argv, (dir_ / ("agent" + std::to_string(h) + ".log")).string()));
     }

@@ -135,5 +135,52 @@ TEST_F(HostBed, AMissingAgentIsNamedAndNothingStarts) {
   EXPECT_TRUE(pids_in(ns(1)).empty()) << "the launcher left processes on host 1";
 }
 
+// docs/hosts.md's namespace example as written: agents without --work-dir, all on this
+// machine's one filesystem. Each takes a folder of its own (/var/tmp/mechsim-agent/
+// <address>-domain<D>), so neither reads the other's DDS configuration (which names its
+// host's address: a node reading the other's fails at once, "does not match an available
+// interface"), and the run is byte-identical to the single-host one. A second agent on a
+// folder in use is refused, naming it.
+TEST_F(HostBed, AgentsWithDefaultWorkFoldersOnOneFilesystemKeepTheirFilesApart) {
+  start_agents(3, 3.0, /*default_work_dirs=*/true);
+  const fs::path single = dir_ / "single";
+  const CommandResult one = run({kMechsim, "launch", kScenes + "nc_slide_loop.yaml", "--runs-dir", single.string(), "--no-plot",
+                                 "--no-progress", "--dds", "cyclone"},
+                                single.string() + ".log", 240);
+  ASSERT_EQ(one.exit_code, 0) << one.output;
+  const fs::path multi = dir_ / "multi";
+  const CommandResult across = launch_across("nc_slide_loop.yaml", kNc, "cyclone", multi);
+  ASSERT_EQ(across.exit_code, 0) << across.output << "\nagent logs in " << dir_;
+  const fs::path a = only_run_folder(single), b = only_run_folder(multi);
+  ASSERT_FALSE(a.empty());
+  ASSERT_FALSE(b.empty());
+  for (const std::string& p : kNc) {
+    const std::string first = slurp((a / (p + ".outputs.bin")).string());
+    EXPECT_GT(first.size(), 1000u) << p;
+    EXPECT_TRUE(first == slurp((b / (p + ".outputs.bin")).string())) << p << ".outputs.bin differs from the single-host run";
+  }
+  // Each agent's folder and DDS configuration are its own: its address, not the other's.
+  for (int h = 2; h <= 3; ++h) {
+    const std::string work = "/var/tmp/mechsim-agent/" + address(h) + "-domain" + std::to_string(kDomain);
+    const std::string agent_log = slurp((dir_ / ("agent" + std::to_string(h) + ".log")).string());
+    EXPECT_NE(agent_log.find("work folder " + work + ","), std::string::npos) << agent_log;
+    const std::string other = address(h == 2 ? 3 : 2);
+    for (const char* file : {"cyclonedds.xml", "fastdds.xml"}) {
+      const std::string config = slurp(work + "/dds/" + file);
+      EXPECT_NE(config.find(address(h)), std::string::npos) << work << "/dds/" << file;
+      // The peers list holds the launcher's host and this one only (start_agents: --peers host 1).
+      EXPECT_EQ(config.find(other), std::string::npos) << work << "/dds/" << file << " names the other agent's address";
+    }
+  }
+  // A second agent for host 2's address and domain would share its default folder: refused.
+  const CommandResult second = run({ip_command(), "netns", "exec", ns(2), kMechsim, "agent", "--domain", std::to_string(kDomain),
+                                    "--address", address(2), "--peers", address(1), "--exit-after", "5"},
+                                   (dir_ / "agent2-second.log").string(), 30);
+  EXPECT_EQ(second.exit_code, 1) << second.output;
+  EXPECT_NE(second.output.find("work folder /var/tmp/mechsim-agent/10.77.0.2-domain7 is in use by another mechsim agent (pid "),
+            std::string::npos)
+      << second.output;
+}
+
 }  // namespace
 }  // namespace mechsim::testing

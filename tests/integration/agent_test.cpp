@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <thread>
 
 #include "agent_client.h"
 #include "domain_lock.h"
@@ -62,6 +63,39 @@ TEST(Agent, RefusesAnythingButAMechsimNodeOfItsDomain) {
   EXPECT_FALSE(r.timed_out);
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("mechsim agent: stopped"), std::string::npos) << r.output;
+  fs::remove_all(dir);
+}
+
+// Two agents on one work folder would overwrite each other's DDS configuration and hand
+// back (then remove) each other's node files: the second is refused, naming the folder and
+// the agent holding it; once the first has stopped, the folder is free again.
+TEST(Agent, ASecondAgentOnAWorkFolderInUseIsRefused) {
+  launch::DomainLock domain = launch::DomainLock::acquire();
+  const fs::path dir = fs::temp_directory_path() / ("mechsim-agent-lock-test-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  ::setenv("CYCLONEDDS_URI", "file://" MECHSIM_SOURCE_DIR "/config/dds/cyclonedds-loopback.xml", 1);
+  const std::string mechsim = std::string(MECHSIM_BIN_DIR) + "/mechsim";
+  const std::vector<std::string> argv{mechsim, "agent", "--domain", std::to_string(domain.domain_id()), "--work-dir",
+                                      (dir / "work").string(), "--exit-after", "60"};
+  const pid_t first = spawn(argv, (dir / "first.log").string());
+  // The first holds the folder once it says it serves (the lock is taken before that line).
+  for (int i = 0; i < 200 && slurp((dir / "first.log").string()).find("serving domain") == std::string::npos; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  ASSERT_NE(slurp((dir / "first.log").string()).find("serving domain"), std::string::npos) << slurp((dir / "first.log").string());
+  const CommandResult second = run(argv, (dir / "second.log").string(), 30);
+  EXPECT_EQ(second.exit_code, 1) << second.output;
+  EXPECT_NE(second.output.find("work folder " + (dir / "work").string() + " is in use by another mechsim agent (pid " +
+                               std::to_string(first) + ","),
+            std::string::npos)
+      << second.output;
+  ::kill(first, SIGTERM);
+  EXPECT_EQ(wait_for(first, (dir / "first.log").string(), 10).exit_code, 0);
+  // Free again: a third agent takes it and serves.
+  std::vector<std::string> third_argv = argv;
+  third_argv.back() = "1";
+  const CommandResult third = run(third_argv, (dir / "third.log").string(), 30);
+  EXPECT_EQ(third.exit_code, 0) << third.output;
+  EXPECT_NE(third.output.find("work folder " + (dir / "work").string() + ","), std::string::npos) << third.output;
   fs::remove_all(dir);
 }
 

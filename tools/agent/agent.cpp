@@ -1,9 +1,13 @@
 #include "agent.h"
 
+#include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
+#include <cstring>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -67,7 +71,12 @@ struct AgentRun {
 
 class Agent {
  public:
-  explicit Agent(const AgentOptions& o) : opt_(o) {}
+  explicit Agent(AgentOptions o) : opt_(std::move(o)) {
+    if (opt_.work_dir.empty()) opt_.work_dir = default_work_dir(opt_.address, opt_.domain);
+  }
+  ~Agent() {
+    if (lock_fd_ >= 0) ::close(lock_fd_);
+  }
   int run();
 
  private:
@@ -94,8 +103,10 @@ class Agent {
   void collect(AgentRun& run);
   void stop_run(AgentRun& run, const std::string& why);
   void hello();
+  void lock_work_dir();
 
-  const AgentOptions& opt_;
+  AgentOptions opt_;
+  int lock_fd_ = -1;
   std::set<std::string> addresses_;
   std::unique_ptr<transport::Participant> participant_;
   std::unique_ptr<transport::AgentWriter> replies_;
@@ -290,11 +301,32 @@ void Agent::handle(const transport::AgentMessage& m) {
   }
 }
 
+// The work folder is this agent's alone: a second agent on it would overwrite the DDS
+// configuration the first one's nodes read (their own address) and hand back, then remove,
+// the first one's node files. An flock dies with the process, so a killed agent frees it.
+void Agent::lock_work_dir() {
+  fs::create_directories(opt_.work_dir);
+  const fs::path lock = fs::path(opt_.work_dir) / "agent.lock";
+  lock_fd_ = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (lock_fd_ < 0) throw std::runtime_error(lock.string() + ": cannot open: " + std::strerror(errno));
+  if (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
+    const std::string holder = read_file(lock);
+    throw std::runtime_error("work folder " + opt_.work_dir + " is in use by another mechsim agent (" +
+                             (holder.empty() ? std::string("see ") + lock.string() : holder) +
+                             "): give each agent a folder of its own with --work-dir, or leave it out (default: one "
+                             "folder per address and domain; docs/hosts.md)");
+  }
+  const std::string me = "pid " + std::to_string(::getpid()) + ", address " +
+                         (opt_.address.empty() ? std::string("loopback") : opt_.address) + ", domain " + std::to_string(opt_.domain);
+  if (::ftruncate(lock_fd_, 0) != 0 || ::pwrite(lock_fd_, me.data(), me.size(), 0) != static_cast<ssize_t>(me.size()))
+    throw std::runtime_error(lock.string() + ": cannot write: " + std::strerror(errno));
+}
+
 int Agent::run() {
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
   std::signal(SIGPIPE, SIG_IGN);
-  fs::create_directories(opt_.work_dir);
+  lock_work_dir();
   const auto local = launch::local_ipv4_addresses();
   if (!opt_.address.empty()) {
     if (std::find(local.begin(), local.end(), opt_.address) == local.end())
@@ -346,6 +378,10 @@ int Agent::run() {
 }
 
 }  // namespace
+
+std::string default_work_dir(const std::string& address, int domain) {
+  return std::string(kWorkDirRoot) + "/" + (address.empty() ? std::string("loopback") : address) + "-domain" + std::to_string(domain);
+}
 
 int run_agent(const AgentOptions& options) {
   try {

@@ -11,9 +11,16 @@
 
 namespace mechsim::agent {
 
+// Where an agent keeps its files when --work-dir is not given: one folder per address and
+// domain, /var/tmp/mechsim-agent/<address>-domain<D> ("loopback" without an address), so
+// that agents sharing a filesystem (namespaces, containers with a shared volume, NFS) never
+// write each other's DDS configuration or node files.
+inline constexpr const char* kWorkDirRoot = "/var/tmp/mechsim-agent";
+std::string default_work_dir(const std::string& address, int domain);
+
 struct AgentOptions {
   int domain = 0;
-  std::string work_dir = "/var/tmp/mechsim-agent";  // run folders of the nodes it starts
+  std::string work_dir;              // run folders of the nodes it starts ("" = default_work_dir())
   std::string address;               // this host's IPv4 address on the run network ("" = loopback only)
   std::vector<std::string> peers;    // addresses of the launchers' hosts (unicast discovery)
   std::string vendor;                // DDS vendor of the agent's own participant ("" = the default)

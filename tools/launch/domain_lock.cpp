@@ -15,7 +15,7 @@ namespace {
 constexpr const char* kLockDir = "/tmp/mechsim-domains";
 // Domain ids map to UDP ports 7400 + 250 d; 232 is the highest valid one. 0 is left to
 // other DDS applications' defaults.
-constexpr int kFirst = 1, kLast = 230;
+constexpr int kFirst = kFirstFreeDomain, kLast = kLastFreeDomain;
 }  // namespace
 
 DomainLock DomainLock::acquire() {

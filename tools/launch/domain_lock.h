@@ -6,6 +6,9 @@
 
 namespace mechsim::launch {
 
+// The domains a launcher picks from (0 is left to other DDS applications' defaults).
+inline constexpr int kFirstFreeDomain = 1, kLastFreeDomain = 230;
+
 class DomainLock {
  public:
   // Tries domains from a random start in 1..230; throws std::runtime_error when all are taken.

@@ -617,7 +617,10 @@ json Run::summarise(const RunOutcome& out) {
   s["run_dir"] = run_dir_;
   s["domain_id"] = domain_;
   s["dds_vendor"] = scene_.vendor;  // the launcher's own participant
-  if (!scene_.security_dir.empty()) s["dds_security"] = scene_.security_dir;
+  if (!scene_.security_dir.empty()) {
+    s["dds_security"] = scene_.security_dir;
+    s["dds_protection"] = scene_.security_protection;
+  }
   s["mode"] = scene_.mode;
   s["redundant_samples"] = scene_.faults.redundant();
   if (scene_.checkpointing()) {
@@ -756,8 +759,9 @@ int Run::execute() {
   }
   configure_security_environment(scene_);
   if (!scene_.security_dir.empty())
-    std::fprintf(stderr, "mechsim: DDS security: %s (authentication, access control, encryption; docs/security.md)\n",
-                 scene_.security_dir.c_str());
+    std::fprintf(stderr, "mechsim: DDS security: %s (authentication, access control, %s; docs/security.md)\n",
+                 scene_.security_dir.c_str(),
+                 scene_.security_protection == "sign" ? "signed, not encrypted: protection sign" : "encryption");
   participant_ = transport::create_participant(scene_.vendor, domain_);
   // Discovers while the nodes start. Not in a secured run on Fast DDS: the discovery
   // participant is Cyclone's, and secured Cyclone and Fast DDS do not complete a handshake

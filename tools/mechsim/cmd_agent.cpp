@@ -19,7 +19,9 @@ void add_agent_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--address", opt->address,
                   "this host's IPv4 address on the run network (omitted: loopback only, for trying it on one machine)");
   cmd->add_option("--peers", *peers, "comma-separated addresses of the launchers' hosts (unicast discovery, no multicast)");
-  cmd->add_option("--work-dir", opt->work_dir, "folder for the run folders of the nodes it starts")->capture_default_str();
+  cmd->add_option("--work-dir", opt->work_dir,
+                  std::string("folder for its DDS configuration and the run folders of the nodes it starts, this agent's "
+                              "alone (default: ") + agent::kWorkDirRoot + "/<address>-domain<D>, 'loopback' without --address)");
   cmd->add_option("--dds", opt->vendor, "DDS vendor of the agent's own participant (default: the build's default)")
       ->check(CLI::IsMember(transport::available_vendors()));
   cmd->add_option("--heartbeat-timeout", opt->heartbeat_timeout_s,

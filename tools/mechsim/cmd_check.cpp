@@ -6,6 +6,7 @@
 #include "mechsim/config/scene.h"
 #include "mechsim/cosim/process_realtime.h"
 #include "mechsim/cosim/scene_plan.h"
+#include "run_security.h"
 
 namespace mechsim::tools {
 
@@ -17,6 +18,13 @@ void add_check_command(CLI::App& app, int& exit_code) {
     try {
       config::Scene scene = config::load_scene(args->scene, args->overrides());
       cosim::ScenePlan plan = cosim::ScenePlan::build(scene);
+      // A secured scene: what the launcher would refuse before starting anything (the
+      // folder's files, one vendor, a domain the governance covers; docs/security.md).
+      if (const auto problems = launch::security_problems(scene); !problems.empty()) {
+        for (const auto& why : problems) std::fprintf(stderr, "mechsim check: %s\n", why.c_str());
+        exit_code = 2;
+        return;
+      }
       if (const auto& a = scene.time.adaptive)
         std::printf("%s: scene '%s' is valid: an adaptive step of %g .. %g s (tolerance %g), %zu participants\n",
                     scene.file.c_str(), scene.name.c_str(), a->min, a->max, a->tolerance, plan.nodes().size());

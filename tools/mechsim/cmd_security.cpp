@@ -18,7 +18,8 @@ void add_security_command(CLI::App& app, int& exit_code) {
       "init",
       "Make DIR for secured runs of SCENE (`dds: {security: DIR}`): a CA, per participant a certificate, a private key "
       "(mode 0600) and signed permissions to publish its own topics and read its inputs, the same for the launcher and an "
-      "observer, and the signed governance. An existing CA in DIR is kept; the identities are issued anew");
+      "observer, and the two signed governance documents (everything encrypted, governance.p7s; everything signed, "
+      "governance_sign.p7s: the scene's dds.protection chooses). An existing CA in DIR is kept; the identities are issued anew");
   auto dir = std::make_shared<std::string>();
   auto args = std::make_shared<SceneArgs>();
   init->add_option("DIR", *dir, "security folder to write (created if missing)")->required();
@@ -28,8 +29,8 @@ void add_security_command(CLI::App& app, int& exit_code) {
       config::Scene scene = config::load_scene(args->scene, args->overrides());
       cosim::ScenePlan plan = cosim::ScenePlan::build(scene);
       security::init_security_folder(*dir, security::grants_for_plan(plan), std::cout);
-      std::printf("security: %s ready for scene '%s': set `dds: {security: %s}` in the scene, or launch with --set "
-                  "dds.security=%s\n",
+      std::printf("security: %s ready for scene '%s': set `dds: {security: %s}` in the scene (and `protection: sign` for "
+                  "signed, unencrypted runs), or launch with --set dds.security=%s\n",
                   dir->c_str(), scene.name.c_str(), dir->c_str(), dir->c_str());
       exit_code = 0;
     } catch (const config::ConfigError& e) {

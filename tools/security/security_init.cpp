@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
+#include <string>
 
 #include "mechsim/cosim/step_topic.h"
 #include "mechsim/config/config_node.h"
@@ -169,22 +170,30 @@ std::string permissions_xml(const IdentityGrant& grant) {
          "</dds>\n";
 }
 
-std::string governance_xml() {
-  return std::string(
-             "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
-             "<!-- mechsim security init: only authenticated participants join; everything encrypted (docs/security.md) -->\n"
-             "<dds xmlns:xsi=\"http://www.w3.org/2001/XMLSchema-instance\" "
-             "xsi:noNamespaceSchemaLocation=\"http://www.omg.org/spec/DDS-SECURITY/20170901/omg_shared_ca_governance.xsd\">\n"
-             "  <domain_access_rules>\n"
-             "    <domain_rule>\n"
-             "      ") +
-         kDomains +
-         "\n"
+std::string governance_xml(const std::string& protection) {
+  if (protection != transport::kProtectionEncrypt && protection != transport::kProtectionSign)
+    throw std::invalid_argument("governance_xml: protection '" + protection + "': expected encrypt or sign");
+  // Encrypted: discovery, liveliness, every submessage and every payload (per writer).
+  // Signed: discovery and liveliness, and every RTPS message as a whole (one MAC per
+  // message, with the keys of the sending participant: its submessages and payloads
+  // included), not each submessage and payload once more by itself: that costs Fast DDS
+  // about 40 % of its signed pace, and Fast DDS 2.9 cannot decode a payload protected SIGN
+  // ("Error decoding encoded payload", nodes never ready; docs/security.md, 'Protection').
+  const bool sign = protection == transport::kProtectionSign;
+  const std::string kind = sign ? "SIGN" : "ENCRYPT", rtps_kind = sign ? "SIGN" : "NONE", topic_kind = sign ? "NONE" : "ENCRYPT";
+  return std::string("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n") +
+         "<!-- mechsim security init: only authenticated participants join; everything " +
+         (sign ? "signed, nothing encrypted" : "encrypted") + " (dds.protection: " + protection + ", docs/security.md) -->\n" +
+         "<dds xmlns:xsi=\"http://www.w3.org/2001/XMLSchema-instance\" "
+         "xsi:noNamespaceSchemaLocation=\"http://www.omg.org/spec/DDS-SECURITY/20170901/omg_shared_ca_governance.xsd\">\n"
+         "  <domain_access_rules>\n"
+         "    <domain_rule>\n"
+         "      " + kDomains + "\n"
          "      <allow_unauthenticated_participants>false</allow_unauthenticated_participants>\n"
          "      <enable_join_access_control>true</enable_join_access_control>\n"
-         "      <discovery_protection_kind>ENCRYPT</discovery_protection_kind>\n"
-         "      <liveliness_protection_kind>ENCRYPT</liveliness_protection_kind>\n"
-         "      <rtps_protection_kind>NONE</rtps_protection_kind>\n"
+         "      <discovery_protection_kind>" + kind + "</discovery_protection_kind>\n"
+         "      <liveliness_protection_kind>" + kind + "</liveliness_protection_kind>\n"
+         "      <rtps_protection_kind>" + rtps_kind + "</rtps_protection_kind>\n"
          "      <topic_access_rules>\n"
          "        <topic_rule>\n"
          "          <topic_expression>*</topic_expression>\n"
@@ -192,8 +201,8 @@ std::string governance_xml() {
          "          <enable_liveliness_protection>true</enable_liveliness_protection>\n"
          "          <enable_read_access_control>true</enable_read_access_control>\n"
          "          <enable_write_access_control>true</enable_write_access_control>\n"
-         "          <metadata_protection_kind>ENCRYPT</metadata_protection_kind>\n"
-         "          <data_protection_kind>ENCRYPT</data_protection_kind>\n"
+         "          <metadata_protection_kind>" + topic_kind + "</metadata_protection_kind>\n"
+         "          <data_protection_kind>" + topic_kind + "</data_protection_kind>\n"
          "        </topic_rule>\n"
          "      </topic_access_rules>\n"
          "    </domain_rule>\n"
@@ -213,8 +222,13 @@ void init_security_folder(const std::string& dir_text, const std::vector<Identit
              "/O=mechsim/CN=mechsim CA", "-addext", "basicConstraints=critical,CA:TRUE"});
     log << "security: new CA " << ca.string() << " (its key " << ca_key.string() << " signs identities: keep it off the nodes' machines)\n";
   }
-  write_file(dir / "governance.xml", governance_xml());
-  sign(dir, dir / "governance.xml", dir / "governance.p7s");
+  // One governance per protection: a scene's dds.protection chooses at run time.
+  for (const char* protection : {transport::kProtectionEncrypt, transport::kProtectionSign}) {
+    const fs::path p7s = transport::SecurityIdentity::governance_file(dir.string(), protection);
+    const fs::path xml = fs::path(p7s).replace_extension(".xml");
+    write_file(xml, governance_xml(protection));
+    sign(dir, xml, p7s);
+  }
   for (const auto& g : grants) {
     const fs::path id = dir / g.name;
     fs::create_directories(id);

@@ -31,13 +31,15 @@ std::vector<IdentityGrant> grants_for_plan(const cosim::ScenePlan& plan);
 
 // The permissions document (XML, unsigned) of one identity.
 std::string permissions_xml(const IdentityGrant& grant);
-// The governance document (XML, unsigned): authentication required on every domain,
-// discovery, liveliness, submessages and payloads of every topic encrypted, read and write
-// access control on.
-std::string governance_xml();
+// The governance document (XML, unsigned) for a protection (transport::kProtectionEncrypt
+// or kProtectionSign): authentication required on domains 0..230, read and write access
+// control on, discovery, liveliness, submessages and payloads of every topic encrypted
+// (ENCRYPT), or discovery, liveliness and every RTPS message as a whole signed (SIGN:
+// rtps_protection_kind SIGN, metadata and data protection NONE).
+std::string governance_xml(const std::string& protection);
 
 // Writes DIR: ca.pem and ca_key.pem (kept when they exist, so identities can be added or
-// re-issued under the same CA), governance.p7s, and DIR/<name>/{cert.pem, key.pem,
+// re-issued under the same CA), governance.p7s and governance_sign.p7s, and DIR/<name>/{cert.pem, key.pem,
 // permissions.p7s} for every grant (re-issued). Private keys get mode 0600. Throws
 // std::runtime_error naming the file and openssl's message.
 void init_security_folder(const std::string& dir, const std::vector<IdentityGrant>& grants, std::ostream& log);

@@ -244,7 +244,7 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   }
   if (root.has("hang_timeout")) scene.hang_timeout = root.positive_quantity("hang_timeout", dim::time);
   if (auto dds = root.optional_child("dds")) {
-    dds->allow_only({"vendor", "domain", "security"});
+    dds->allow_only({"vendor", "domain", "security", "protection"});
     if (dds->has("vendor")) scene.vendor = dds->choice("vendor", {"cyclone", "fastdds"});
     if (dds->has("domain") && dds->string("domain") != "auto") {
       long d = dds->integer("domain");
@@ -264,6 +264,12 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
           std::filesystem::absolute(p.is_absolute() || !from_file ? p : std::filesystem::path(path).parent_path() / p).lexically_normal().string();
       if (scene.security_dir.size() > 1 && scene.security_dir.back() == '/') scene.security_dir.pop_back();
       scene.root.set_override("dds.security", scene.security_dir);
+    }
+    if (dds->has("protection")) {
+      scene.security_protection = dds->choice("protection", {"encrypt", "sign"});
+      if (scene.security_dir.empty())
+        dds->child("protection").fail("expected dds.security with it: protection chooses what DDS Security protects in a secured "
+                                      "run (docs/security.md, 'Protection')");
     }
   }
   if (auto faults = root.optional_child("faults")) {

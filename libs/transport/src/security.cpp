@@ -4,6 +4,9 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
+#include <iterator>
+#include <regex>
 #include <stdexcept>
 
 namespace mechsim::transport {
@@ -24,11 +27,60 @@ std::optional<SecurityIdentity> security_from_environment() {
   if (!has_name)
     throw std::runtime_error(std::string(kSecurityDirEnv) + " is set but " + kSecurityIdentityEnv +
                              " is not: expected the identity to use (a participant, launcher or observer; docs/security.md)");
-  return SecurityIdentity{dir, name};
+  SecurityIdentity identity{dir, name};
+  if (const char* p = std::getenv(kSecurityProtectionEnv); p != nullptr && *p != '\0') {
+    identity.protection = p;
+    if (identity.protection != kProtectionEncrypt && identity.protection != kProtectionSign)
+      throw std::runtime_error(std::string(kSecurityProtectionEnv) + "=" + identity.protection +
+                               ": expected encrypt or sign (docs/security.md, 'Protection')");
+  }
+  return identity;
 }
 
 std::vector<std::string> security_environment(const SecurityIdentity& identity) {
-  return {std::string(kSecurityDirEnv) + "=" + identity.dir, std::string(kSecurityIdentityEnv) + "=" + identity.name};
+  return {std::string(kSecurityDirEnv) + "=" + identity.dir, std::string(kSecurityIdentityEnv) + "=" + identity.name,
+          std::string(kSecurityProtectionEnv) + "=" + identity.protection};
+}
+
+std::vector<DomainRange> governance_domains(const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw std::runtime_error(file + ": cannot read the governance document");
+  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  // DDS Security 9.4.1.2.2: <domains> holds <id>N</id> and <id_range> with <min> and/or <max>
+  // (a missing bound is open: up to 232, Cyclone's and Fast DDS's highest domain id).
+  static const std::regex domains(R"(<domains>([\s\S]*?)</domains>)");
+  static const std::regex item(
+      R"(<id>\s*(\d+)\s*</id>|<id_range>\s*(?:<min>\s*(\d+)\s*</min>)?\s*(?:<max>\s*(\d+)\s*</max>)?\s*</id_range>)");
+  std::vector<DomainRange> ranges;
+  for (std::sregex_iterator d(text.begin(), text.end(), domains), end; d != end; ++d) {
+    const std::string inner = (*d)[1].str();
+    for (std::sregex_iterator i(inner.begin(), inner.end(), item); i != end; ++i) {
+      const auto& m = *i;
+      if (m[1].matched) {
+        const int id = std::stoi(m[1].str());
+        ranges.push_back({id, id});
+      } else {
+        ranges.push_back({m[2].matched ? std::stoi(m[2].str()) : 0, m[3].matched ? std::stoi(m[3].str()) : 232});
+      }
+    }
+  }
+  if (ranges.empty())
+    throw std::runtime_error(file + ": names no domain (no <domains> with an <id> or <id_range>); expected the governance of "
+                             "`mechsim security init` (docs/security.md)");
+  return ranges;
+}
+
+bool covers(const std::vector<DomainRange>& ranges, int domain) {
+  for (const auto& r : ranges)
+    if (domain >= r.min && domain <= r.max) return true;
+  return false;
+}
+
+std::string describe(const std::vector<DomainRange>& ranges) {
+  std::string s;
+  for (const auto& r : ranges)
+    s += (s.empty() ? "" : ", ") + (r.min == r.max ? std::to_string(r.min) : std::to_string(r.min) + ".." + std::to_string(r.max));
+  return s;
 }
 
 std::vector<std::string> security_file_problems(const SecurityIdentity& identity) {

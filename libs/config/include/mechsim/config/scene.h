@@ -191,6 +191,9 @@ struct Scene {
   // dds.security: the folder of `mechsim security init` (absolute); empty: unsecured
   // (docs/security.md).
   std::string security_dir;
+  // dds.protection: encrypt (default: discovery, submessages and payloads encrypted) or sign
+  // (signed, readable on the wire); authentication and access control either way.
+  std::string security_protection = "encrypt";
   double hang_timeout = 5.0;       // s without a status from a node => hung
   std::vector<HostSpec> hosts;     // empty: a single-host run
   std::vector<ParticipantSpec> participants;
