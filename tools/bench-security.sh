@@ -63,18 +63,14 @@ def cell(values):
     failed = sum(r == "failed" for r in values)
     text = f"{statistics.median(ok):.0f} ({ok[0]:.0f}-{ok[-1]:.0f})" if ok else "-"
     return (text + (f", {failed} failed" if failed else "")), (statistics.median(ok) if ok else None)
-print(f"nc_slide_loop, steps per second, median of {runs} (min-max); 20 000 lock-step steps per run\n")
-print("| layout | unsecured | sign | encrypt | sign / unsecured | encrypt / unsecured | encrypt / sign |")
-print("|---|---|---|---|---|---|---|")
-for layout, by in rates.items():
-    (u, um), (s, sm), (e, em) = (cell(by.get(v, [])) for v in ("unsecured", "sign", "encrypt"))
+def table(title, values):
+    print(title + "\n")
+    print("| layout | unsecured | sign | encrypt | sign / unsecured | encrypt / unsecured | encrypt / sign |")
+    print("|---|---|---|---|---|---|---|")
     ratio = lambda a, b: f"{a / b:.2f}" if a and b else "-"
-    print(f"| {layout} | {u} | {s} | {e} | {ratio(sm, um)} | {ratio(em, um)} | {ratio(em, sm)} |")
-print(f"\nCPU microseconds per step, launcher and nodes together, median of {runs} (min-max)\n")
-print("| layout | unsecured | sign | encrypt | sign / unsecured | encrypt / unsecured | encrypt / sign |")
-print("|---|---|---|---|---|---|---|")
-for layout, by in cpus.items():
-    (u, um), (s, sm), (e, em) = (cell(by.get(v, [])) for v in ("unsecured", "sign", "encrypt"))
-    ratio = lambda a, b: f"{a / b:.2f}" if a and b else "-"
-    print(f"| {layout} | {u} | {s} | {e} | {ratio(sm, um)} | {ratio(em, um)} | {ratio(em, sm)} |")
+    for layout, by in values.items():
+        (u, um), (s, sm), (e, em) = (cell(by.get(v, [])) for v in ("unsecured", "sign", "encrypt"))
+        print(f"| {layout} | {u} | {s} | {e} | {ratio(sm, um)} | {ratio(em, um)} | {ratio(em, sm)} |")
+table(f"nc_slide_loop, steps per second, median of {runs} (min-max); 20 000 lock-step steps per run", rates)
+table(f"\nCPU microseconds per step, launcher and nodes together, median of {runs} (min-max)", cpus)
 PY
