@@ -15,16 +15,15 @@ namespace {
 constexpr const char* kLockDir = "/tmp/mechsim-domains";
 // Domain ids map to UDP ports 7400 + 250 d; 232 is the highest valid one. 0 is left to
 // other DDS applications' defaults.
-constexpr int kFirst = kFirstFreeDomain, kLast = kLastFreeDomain;
 }  // namespace
 
 DomainLock DomainLock::acquire() {
   ::mkdir(kLockDir, 01777);
   std::random_device rd;
-  const int span = kLast - kFirst + 1;
+  const int span = kLastFreeDomain - kFirstFreeDomain + 1;
   const int offset = static_cast<int>(rd() % span);
   for (int i = 0; i < span; ++i) {
-    const int d = kFirst + (offset + i) % span;
+    const int d = kFirstFreeDomain + (offset + i) % span;
     const std::string path = std::string(kLockDir) + "/" + std::to_string(d) + ".lock";
     int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
     if (fd < 0) continue;

@@ -761,7 +761,7 @@ int Run::execute() {
   if (!scene_.security_dir.empty())
     std::fprintf(stderr, "mechsim: DDS security: %s (authentication, access control, %s; docs/security.md)\n",
                  scene_.security_dir.c_str(),
-                 scene_.security_protection == "sign" ? "signed, not encrypted: protection sign" : "encryption");
+                 scene_.security_protection == transport::kProtectionSign ? "signed, not encrypted: protection sign" : "encryption");
   participant_ = transport::create_participant(scene_.vendor, domain_);
   // Discovers while the nodes start. Not in a secured run on Fast DDS: the discovery
   // participant is Cyclone's, and secured Cyclone and Fast DDS do not complete a handshake

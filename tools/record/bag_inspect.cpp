@@ -100,6 +100,13 @@ record::McapReader open_bag(const std::string& path, const BagReadOptions& optio
   return record::McapReader(path, ro);
 }
 
+// --strict: a file with any problem (McapReader::verify()) is refused, naming the first.
+void refuse_if_damaged(const std::string& path, const std::vector<std::string>& problems) {
+  if (!problems.empty())
+    throw record::McapError("'" + path + "' is damaged (" + std::to_string(problems.size()) +
+                            " problems; without --strict the sound chunks are read): " + problems.front());
+}
+
 }  // namespace
 
 BagInfo inspect_bag(const std::string& path, const BagReadOptions& options) {
@@ -175,9 +182,7 @@ BagInfo inspect_bag(const std::string& path, const BagReadOptions& options) {
   }
   std::sort(info.topics.begin(), info.topics.end(), [](const BagTopic& a, const BagTopic& b) { return a.topic < b.topic; });
   info.problems = reader.verify();
-  if (options.strict && !info.problems.empty())
-    throw record::McapError("'" + path + "' is damaged (" + std::to_string(info.problems.size()) +
-                            " problems; without --strict the sound chunks are read): " + info.problems.front());
+  if (options.strict) refuse_if_damaged(path, info.problems);
   info.chunks_skipped = reader.damaged().size();
   info.damaged = !info.problems.empty();
   info.complete = reader.complete() && !info.damaged;
@@ -281,10 +286,7 @@ std::string csv_file_name(const std::string& topic) {
 
 BagExport export_csv(const std::string& bag, const std::string& dir, const BagReadOptions& options) {
   const record::McapReader reader = open_bag(bag, options);
-  if (options.strict)  // a lie the index reads past (a record length) must refuse as well
-    if (const auto problems = reader.verify(); !problems.empty())
-      throw record::McapError("'" + bag + "' is damaged (" + std::to_string(problems.size()) +
-                              " problems): " + problems.front());
+  if (options.strict) refuse_if_damaged(bag, reader.verify());  // a lie the index reads past (a record length)
   fs::create_directories(dir);
   struct Output {
     ExportedTopic topic;

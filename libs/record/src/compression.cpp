@@ -56,33 +56,51 @@ std::string sizes_differ(const std::string& where, const char* codec, std::size_
                   std::to_string(claimed) + " bytes); decompression stopped there");
 }
 
-// The output is exactly the claimed size (already bounded by ChunkLimits) and never grows:
-// once it is full, one more byte of output means the chunk lied, and decoding stops.
+// The decoders' output: exactly the claimed size (already bounded by ChunkLimits), never
+// grown. Once it is full the decoder gets a one-byte probe instead: a byte there means the
+// chunk lied, and decoding stops.
+class ExactOutput {
+ public:
+  explicit ExactOutput(uint64_t claimed) : buffer_(static_cast<std::size_t>(claimed)) {}
+  uint8_t* space() { return full() ? &probe_ : buffer_.data() + used_; }
+  std::size_t space_size() const { return full() ? 1 : buffer_.size() - used_; }
+  // The decoder wrote `n` bytes to space(); adds them to `produced`.
+  void wrote(std::size_t n, uint64_t& produced, const std::string& where, const char* codec) {
+    produced += n;
+    if (n > 0 && full()) larger_than_claimed(where, codec, buffer_.size());
+    used_ += n;
+  }
+  // The whole output, after checking that the decoder filled it.
+  Buffer take(const std::string& where, const char* codec) {
+    if (!full()) throw McapError(sizes_differ(where, codec, used_, buffer_.size()));
+    return std::move(buffer_);
+  }
+
+ private:
+  bool full() const { return used_ == buffer_.size(); }
+  Buffer buffer_;
+  std::size_t used_ = 0;
+  uint8_t probe_ = 0;
+};
+
 Buffer zstd_decompress(std::span<const uint8_t> data, uint64_t claimed, const std::string& where,
                        uint64_t& produced) {
   std::unique_ptr<ZSTD_DCtx, decltype(&ZSTD_freeDCtx)> ctx(ZSTD_createDCtx(), &ZSTD_freeDCtx);
   if (!ctx) throw std::runtime_error("zstd: cannot create a decompression context");
-  Buffer out(static_cast<std::size_t>(claimed));
-  std::size_t used = 0;
-  uint8_t probe = 0;
+  ExactOutput out(claimed);
   ZSTD_inBuffer in{data.data(), data.size(), 0};
   std::size_t hint = 1;  // 0 once a frame is complete
   while (hint != 0 || in.pos < in.size) {  // concatenated frames continue the output
-    const bool full = used == out.size();
-    ZSTD_outBuffer o = full ? ZSTD_outBuffer{&probe, 1, 0}
-                            : ZSTD_outBuffer{out.data() + used, out.size() - used, 0};
+    ZSTD_outBuffer o{out.space(), out.space_size(), 0};
     const std::size_t in_before = in.pos;
     hint = ZSTD_decompressStream(ctx.get(), &o, &in);
     if (ZSTD_isError(hint))
       throw McapError(where + ": zstd decompression failed: " + ZSTD_getErrorName(hint));
-    produced += o.pos;
-    if (full && o.pos > 0) larger_than_claimed(where, "zstd", claimed);
-    used += o.pos;
+    out.wrote(o.pos, produced, where, "zstd");
     if (o.pos == 0 && in.pos == in_before)  // no progress with room left: input ends early
       throw McapError(where + ": zstd frame ends early");
   }
-  if (used != claimed) throw McapError(sizes_differ(where, "zstd", used, claimed));
-  return out;
+  return out.take(where, "zstd");
 }
 
 Buffer lz4_decompress(std::span<const uint8_t> data, uint64_t claimed, const std::string& where,
@@ -92,27 +110,20 @@ Buffer lz4_decompress(std::span<const uint8_t> data, uint64_t claimed, const std
     throw std::runtime_error("lz4: cannot create a decompression context");
   std::unique_ptr<LZ4F_dctx, decltype(&LZ4F_freeDecompressionContext)> ctx(
       raw_ctx, &LZ4F_freeDecompressionContext);
-  Buffer out(static_cast<std::size_t>(claimed));
-  std::size_t used = 0;
-  uint8_t probe = 0;
+  ExactOutput out(claimed);
   std::size_t in_pos = 0;
   std::size_t hint = 1;  // 0 once the frame is complete
   while (hint != 0) {
-    const bool full = used == out.size();
     std::size_t in_size = data.size() - in_pos;
-    std::size_t out_size = full ? 1 : out.size() - used;
-    hint = LZ4F_decompress(ctx.get(), full ? &probe : out.data() + used, &out_size,
-                           data.data() + in_pos, &in_size, nullptr);
+    std::size_t out_size = out.space_size();
+    hint = LZ4F_decompress(ctx.get(), out.space(), &out_size, data.data() + in_pos, &in_size, nullptr);
     if (LZ4F_isError(hint))
       throw McapError(where + ": lz4 decompression failed: " + LZ4F_getErrorName(hint));
-    produced += out_size;
-    if (full && out_size > 0) larger_than_claimed(where, "lz4", claimed);
+    out.wrote(out_size, produced, where, "lz4");
     in_pos += in_size;
-    used += out_size;
     if (hint != 0 && in_size == 0 && out_size == 0) throw McapError(where + ": lz4 frame ends early");
   }
-  if (used != claimed) throw McapError(sizes_differ(where, "lz4", used, claimed));
-  return out;
+  return out.take(where, "lz4");
 }
 
 }  // namespace
