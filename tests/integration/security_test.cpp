@@ -508,14 +508,26 @@ TEST_P(SignedRun, NodeOutputsAreByteIdenticalToAnUnsecuredRun) {
   if (!compiled_in(layout)) GTEST_SKIP() << layout << " is not in this build";
   const CommandResult plain = run(run_args("plain", layout, false), log("plain"));
   ASSERT_EQ(plain.exit_code, 0) << plain.output;
-  const CommandResult signed_run = run(run_args("signed", layout, true, {"--set", "dds.protection=sign"}), log("signed"));
+  std::string tag = "signed";
+  CommandResult signed_run = run(run_args(tag, layout, true, {"--set", "dds.protection=sign"}), log(tag));
+  // A known defect, not yet fixed: a signed Fast DDS run now and then never gets its nodes
+  // matched (2 of about 45 starts on a loaded 2-core machine, "nodes not ready after 30 s";
+  // docs/security.md, 'Protection'). One more start is allowed for that refusal alone, and
+  // said; the second run must pass every check below.
+  if (layout == "fastdds" && signed_run.exit_code != 0 &&
+      signed_run.output.find("nodes not ready after") != std::string::npos) {
+    std::fprintf(stderr, "note: signed Fast DDS run not ready (known intermittent start failure), starting once more:\n%s\n",
+                 signed_run.output.c_str());
+    tag = "signed_again";
+    signed_run = run(run_args(tag, layout, true, {"--set", "dds.protection=sign"}), log(tag));
+  }
   ASSERT_EQ(signed_run.exit_code, 0) << signed_run.output;
   EXPECT_NE(signed_run.output.find("DDS security: " + sec() + " (authentication, access control, signed, not encrypted"),
             std::string::npos)
       << signed_run.output;
-  expect_identical_outputs("plain", "signed");
-  EXPECT_EQ(summary("signed")["dds_security"], sec());
-  EXPECT_EQ(summary("signed")["dds_protection"], "sign");
+  expect_identical_outputs("plain", tag);
+  EXPECT_EQ(summary(tag)["dds_security"], sec());
+  EXPECT_EQ(summary(tag)["dds_protection"], "sign");
 }
 
 INSTANTIATE_TEST_SUITE_P(Vendors, SignedRun, ::testing::Values("cyclone", "fastdds"),
