@@ -115,7 +115,9 @@ TEST_F(Realtime, APacedRunTakesSimulatedTimeOverRtfOfWallTime) {
   // each node's pacer reports, never against a stopwatch: a publication waits for its
   // deadline, so the last one (paced_wall_time_s, step 0's deadline to the last
   // publication) comes at 1 s plus its own lateness, which the node's largest lateness
-  // bounds. 1 ns: the deadlines are rounded to whole nanoseconds.
+  // bounds. 10 ns: the deadlines are rounded to whole nanoseconds, and the node writes
+  // paced_wall_time_s with 9 significant digits (%.9g: within 5 ns at 1 s; a run where the
+  // last publication was also the latest one failed a 1 ns margin on a busy machine).
   CommandResult r = launch("rt", {"--end", "2 s", "--rtf", "2"});
   ASSERT_EQ(r.exit_code, 0) << r.output;
   json s = summary("rt");
@@ -125,8 +127,8 @@ TEST_F(Realtime, APacedRunTakesSimulatedTimeOverRtfOfWallTime) {
     // composer's reference of cam_press has them: composer_test.cpp).
     EXPECT_EQ(f["publications"].get<long>(), 2004) << node;
     const double paced = f["paced_wall_time_s"].get<double>(), worst = f["lateness_max_s"].get<double>();
-    EXPECT_GE(paced, 1.0 - 1e-9) << node << ": the last step was published before its deadline";
-    EXPECT_LE(paced, 1.0 + worst + 1e-9) << node << ": later than its deadline plus the node's largest lateness";
+    EXPECT_GE(paced, 1.0 - 1e-8) << node << ": the last step was published before its deadline";
+    EXPECT_LE(paced, 1.0 + worst + 1e-8) << node << ": later than its deadline plus the node's largest lateness";
     // Never faster than asked: simulated time over wall time at the end of the run.
     EXPECT_LE(f["rtf_achieved"].get<double>(), 2.0 * (1 + 1e-9)) << node;
     // A missed deadline is a publication later than one step of wall time (0.5 ms): the
