@@ -38,6 +38,7 @@
 
 #include "json_io.h"
 #include "plot.h"
+#include "scene_snapshot.h"
 #include "stable_step.h"
 #include "mechsim/config/scene.h"
 #include "mechsim/cosim/divergence_guard.h"
@@ -264,6 +265,15 @@ int run_stability_bench(const std::string& scene_path, const StabilityOptions& o
     out << "mechsim bench --stability: " << e.what() << "\n";
     return 2;
   }
+  // Every run loads this copy, never the user's file again (scene_snapshot.h).
+  std::unique_ptr<SceneSnapshot> snapshot;
+  try {
+    snapshot = std::make_unique<SceneSnapshot>(*base);
+  } catch (const std::exception& e) {
+    out << "mechsim bench --stability: " << e.what() << "\n";
+    return 1;
+  }
+  const std::string& run_scene = snapshot->path();
   const std::vector<Cut> cuts = find_cuts(*base);
   const double h0 = base->time.step;
   // Bracket: up to 64x (quick: 16x) the scene's step each way; bisection to 5 % (quick 15 %).
@@ -281,7 +291,7 @@ int run_stability_bench(const std::string& scene_path, const StabilityOptions& o
       out << "  " << row.cut << ", " << row.scheme << ": " << std::flush;
       auto trial = [&](double h) {
         ++row.runs;
-        launch::StepTrial t = try_step(scene_path, *base, cut, overrides, h);
+        launch::StepTrial t = try_step(run_scene, *base, cut, overrides, h);
         out << format_us(h) << (t.stable ? " ok  " : " x  ") << std::flush;
         if (!t.stable && (!row.unstable_h || h < *row.unstable_h)) row.why = t.why;
         return t.stable;
@@ -327,7 +337,7 @@ int run_stability_bench(const std::string& scene_path, const StabilityOptions& o
         // its linear range (a bracket far above it would start in saturation).
         const double lo = std::min(h0, row.stable_h ? *row.stable_h : h0 / span) / 4;
         const double hi = (row.unstable_h ? *row.unstable_h : h0 * span) * 4;
-        row.spectral = spectral(scene_path, *base, overrides, lo, hi);
+        row.spectral = spectral(run_scene, *base, overrides, lo, hi);
       }
       rows.push_back(row);
     }
