@@ -414,12 +414,48 @@ struct RunResult {
   json reference;
 };
 
+// The fixed-H rows the adaptive points are set against, in (wall time, error).
+struct FixedEnvelope {
+  std::vector<std::pair<double, double>> points;
+  std::vector<std::size_t> rows;   // the row (index into the sweep) of each point
+  std::vector<double> below_walls;  // wall times of the rows below reference accuracy
+  double wall_lo = kNaN, wall_hi = kNaN;
+};
+
 class Bench {
  public:
   Bench(const BenchOptions& o, std::ostream& out) : opt_(o), out_(out) {}
   int run();
 
  private:
+  // The parts of run(), in the order it calls them.
+  std::unique_ptr<config::Scene> load_base_scene() const;
+  bool take_scene(const config::Scene& base);
+  bool choose_variants();
+  bool plan_sweep(const config::Scene& base);
+  void choose_dds_checks();
+  void run_sweep();
+  void choose_adaptive_points();
+  void run_adaptive_points();
+  json observed_orders();
+  json best_vs_zero_order_hold();
+  json adaptive_vs_fixed() const;
+  void print_rows();
+  void print_findings(const json& orders, const json& ten_x);
+  void print_adaptive_vs_fixed(const json& adaptive_vs_fixed);
+  void write_json(const json& orders, const json& ten_x, const json& adaptive_vs_fixed, double duration);
+
+  double h_nearest_scene_step() const;
+  int best_fixed_variant_at(double h, double& best_error) const;
+  double tightest_rtol() const;
+  bool is_fixed_row(std::size_t i) const;
+  FixedEnvelope fixed_envelope(bool use_max) const;
+  std::vector<std::pair<double, double>> same_scheme_by_steps(int variant, bool use_max) const;
+  json adaptive_point_vs_fixed(std::size_t j, bool use_max, const FixedEnvelope& env,
+                               const std::vector<std::pair<double, double>>& same) const;
+  json adaptive_curve_vs_fixed(int variant, bool use_max) const;
+  std::string table_line(const std::string& scheme, const std::string& h, const RunSpec& r, const RunResult& res) const;
+
   std::vector<std::string> run_overrides(const RunSpec& r, bool with_solver) const;
   Reference& reference(int variant, double h);
   void adaptive_reference(const RunSpec& r, const std::string& run_dir, Reference& ref);
@@ -456,6 +492,19 @@ class Bench {
   // A scene with an adaptive step of its own: its settings (all but the tolerance, which is
   // swept) for the adaptive points; the fixed points sweep H around a tenth of its max.
   std::optional<config::AdaptiveStepSpec> scene_adaptive_;
+
+  Clock::time_point t_start_;
+  std::vector<std::string> refused_variants_;  // "name: why" of the variants the scene refuses
+  // The fixed-H sweep: its grid, solvers and tolerances, and one spec and result per run.
+  std::vector<double> grid_;
+  std::vector<std::string> solvers_;
+  std::vector<double> rtols_;
+  std::vector<RunSpec> specs_;
+  std::vector<RunResult> results_;
+  std::vector<std::size_t> dds_specs_;  // the runs repeated through `mechsim launch`
+  json dds_ = json::array();            // their outcomes
+  std::vector<double> tolerances_;      // of the adaptive points
+  json adaptive_choice_ = json::array();  // the variants with adaptive points, and why
 };
 
 std::vector<std::string> Bench::run_overrides(const RunSpec& r, bool with_solver) const {
@@ -979,35 +1028,40 @@ void Bench::plots(const std::vector<RunSpec>& specs, const std::vector<RunResult
   if (!plot::write_png(ord, ord_path, &why)) std::fprintf(stderr, "mechsim bench: no plot %s: %s\n", ord_path.c_str(), why.c_str());
 }
 
-int Bench::run() {
-  const auto t_start = Clock::now();
-  // The scene as given (with overrides) must be valid.
+// Loads and validates the scene as given (with overrides); nullptr after printing why.
+std::unique_ptr<config::Scene> Bench::load_base_scene() const {
   std::unique_ptr<config::Scene> base;
   try {
     base = std::make_unique<config::Scene>(config::load_scene(opt_.scene_path, opt_.overrides));
     cosim::ScenePlan::build(*base);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s\n", e.what());
-    return 2;
+    return nullptr;
   }
   if (base->compare.empty()) {
     std::fprintf(stderr, "mechsim bench: %s: the scene has no 'compare:' outputs to measure the error on\n",
                  opt_.scene_path.c_str());
-    return 2;
+    return nullptr;
   }
-  scene_name_ = base->name;
-  h0_ = base->time.step;
-  doc_ = YAML::Clone(base->root.yaml());
-  if (base->time.adaptive) {
+  return base;
+}
+
+// The scene's name, step, document and participants, and the work folder. False when no
+// work folder can be made.
+bool Bench::take_scene(const config::Scene& base) {
+  scene_name_ = base.name;
+  h0_ = base.time.step;
+  doc_ = YAML::Clone(base.root.yaml());
+  if (base.time.adaptive) {
     // The fixed points need a fixed step: the scene's time section without its adaptive
     // keys, H around a tenth of its max (the adaptive points keep the scene's settings).
-    scene_adaptive_ = base->time.adaptive;
-    const double span = base->time.end - base->time.start;
+    scene_adaptive_ = base.time.adaptive;
+    const double span = base.time.end - base.time.start;
     h0_ = span / std::max(1.0, std::round(span / (scene_adaptive_->max / 10)));  // a whole number of steps
     for (const char* key : {"tolerance", "min", "max", "initial", "scales"}) doc_["time"].remove(key);
     doc_["time"]["step"] = time_text(h0_);
   }
-  for (const auto& p : base->participants) {
+  for (const auto& p : base.participants) {
     participants_.push_back(p.name);
     if (doc_["participants"][p.name]["params"] && doc_["participants"][p.name]["params"]["sample_time"])
       sampled_.push_back(p.name);
@@ -1016,15 +1070,18 @@ int Bench::run() {
     char tmpl[] = "/tmp/mechsim-bench-XXXXXX";
     if (!mkdtemp(tmpl)) {
       std::perror("mechsim bench: mkdtemp");
-      return 1;
+      return false;
     }
     opt_.work_dir = tmpl;
   } else {
     fs::create_directories(opt_.work_dir);
   }
+  return true;
+}
 
-  // Scheme variants valid for this scene (checked by the scene validator at the scene's H).
-  std::vector<std::string> refused_variants;
+// Scheme variants valid for this scene (checked by the scene validator at the scene's H),
+// each written to a scene file of its own. False (after saying why) when none is left.
+bool Bench::choose_variants() {
   for (auto& v : scheme_variants(doc_)) {
     if (!opt_.schemes.empty() && std::find(opt_.schemes.begin(), opt_.schemes.end(), v.name) == opt_.schemes.end())
       continue;
@@ -1042,7 +1099,7 @@ int Bench::run() {
       config::Scene s = config::load_scene(file, opt_.overrides);
       cosim::ScenePlan::build(s);
     } catch (const std::exception& e) {
-      refused_variants.push_back(v.name + ": " + e.what());
+      refused_variants_.push_back(v.name + ": " + e.what());
       continue;
     }
     variants_.push_back(v);
@@ -1063,82 +1120,81 @@ int Bench::run() {
   if (variants_.empty()) {
     std::fprintf(stderr, "mechsim bench: no coupling scheme to sweep%s\n",
                  opt_.schemes.empty() ? " (the scene has no connections)" : " (--schemes matches none valid here)");
-    for (const auto& r : refused_variants) std::fprintf(stderr, "  refused %s\n", r.c_str());
-    return 2;
+    for (const auto& r : refused_variants_) std::fprintf(stderr, "  refused %s\n", r.c_str());
+    return false;
   }
+  return true;
+}
 
-  // The grid.
+// The fixed-H runs: every variant at every usable H with every solver, and the tolerance
+// sweep with cvode_bdf. False (after saying why) when no H divides the run.
+bool Bench::plan_sweep(const config::Scene& base) {
   std::vector<double> steps = opt_.steps;
   if (steps.empty()) {
     const std::vector<double> factors = opt_.quick ? std::vector<double>{1, 2, 4} : std::vector<double>{0.25, 0.5, 1, 2, 4, 10};
     for (double f : factors) steps.push_back(h0_ * f);
   }
   // Only steps that divide the run into whole macro steps.
-  std::vector<double> grid;
   for (double h : steps) {
-    const double n = (base->time.end - base->time.start) / h;
+    const double n = (base.time.end - base.time.start) / h;
     if (std::abs(n - std::round(n)) > 1e-6 * n || n < 4) {
       std::fprintf(stderr, "mechsim bench: skipping H = %s: not a whole number of steps over the run\n", time_text(h).c_str());
       continue;
     }
-    grid.push_back(h);
+    grid_.push_back(h);
   }
-  if (grid.empty()) {
+  if (grid_.empty()) {
     std::fprintf(stderr, "mechsim bench: no usable macro step\n");
-    return 2;
+    return false;
   }
-  std::vector<std::string> solvers = opt_.solvers;
-  if (solvers.empty())
-    solvers = opt_.quick ? std::vector<std::string>{"cvode_bdf"}
-                         : std::vector<std::string>{"cvode_bdf", "cvode_adams", "arkode_erk", "arkode_dirk"};
-  std::vector<double> rtols = opt_.rtols;
-  if (rtols.empty()) rtols = opt_.quick ? std::vector<double>{1e-8} : std::vector<double>{1e-4, 1e-8};
+  solvers_ = opt_.solvers;
+  if (solvers_.empty())
+    solvers_ = opt_.quick ? std::vector<std::string>{"cvode_bdf"}
+                          : std::vector<std::string>{"cvode_bdf", "cvode_adams", "arkode_erk", "arkode_dirk"};
+  rtols_ = opt_.rtols;
+  if (rtols_.empty()) rtols_ = opt_.quick ? std::vector<double>{1e-8} : std::vector<double>{1e-4, 1e-8};
 
-  std::vector<RunSpec> specs;
   for (int v = 0; v < static_cast<int>(variants_.size()); ++v)
-    for (double h : grid) {
-      for (const auto& s : solvers) specs.push_back({v, h, s, opt_.rtol, "solver"});
-      for (double rt : rtols)
-        if (rt != opt_.rtol) specs.push_back({v, h, "cvode_bdf", rt, "tolerance"});
+    for (double h : grid_) {
+      for (const auto& s : solvers_) specs_.push_back({v, h, s, opt_.rtol, "solver"});
+      for (double rt : rtols_)
+        if (rt != opt_.rtol) specs_.push_back({v, h, "cvode_bdf", rt, "tolerance"});
     }
 
   std::fprintf(stderr, "mechsim bench: %s: %zu schemes x %zu steps (%s .. %s) x %zu solvers + %zu tolerances = %zu runs in process\n",
-               scene_name_.c_str(), variants_.size(), grid.size(), time_text(grid.front()).c_str(),
-               time_text(grid.back()).c_str(), solvers.size(), rtols.size(), specs.size());
-  for (const auto& r : refused_variants) std::fprintf(stderr, "  scheme refused by the scene: %s\n", r.c_str());
+               scene_name_.c_str(), variants_.size(), grid_.size(), time_text(grid_.front()).c_str(),
+               time_text(grid_.back()).c_str(), solvers_.size(), rtols_.size(), specs_.size());
+  for (const auto& r : refused_variants_) std::fprintf(stderr, "  scheme refused by the scene: %s\n", r.c_str());
+  return true;
+}
 
-  // DDS spot checks: the shipped scheme at the scene's H, then the zero-order-hold baseline.
+// DDS spot checks: the shipped scheme at the scene's H, then the zero-order-hold baseline.
+void Bench::choose_dds_checks() {
   int n_dds = opt_.dds_checks >= 0 ? opt_.dds_checks : (opt_.quick ? 1 : 2);
-  std::vector<std::size_t> dds_specs;
-  for (int pass = 0; pass < 2 && static_cast<int>(dds_specs.size()) < n_dds; ++pass)
-    for (std::size_t i = 0; i < specs.size(); ++i) {
-      const auto& v = variants_[specs[i].variant];
-      if (specs[i].sweep == "solver" && specs[i].solver == solvers.front() &&
-          (pass == 0 ? v.shipped && std::abs(specs[i].h - h0_) < 1e-12 * h0_
-                     : v.zero_order_hold_jacobi && specs[i].h == grid.front())) {
-        dds_specs.push_back(i);
+  for (int pass = 0; pass < 2 && static_cast<int>(dds_specs_.size()) < n_dds; ++pass)
+    for (std::size_t i = 0; i < specs_.size(); ++i) {
+      const auto& v = variants_[specs_[i].variant];
+      if (specs_[i].sweep == "solver" && specs_[i].solver == solvers_.front() &&
+          (pass == 0 ? v.shipped && std::abs(specs_[i].h - h0_) < 1e-12 * h0_
+                     : v.zero_order_hold_jacobi && specs_[i].h == grid_.front())) {
+        dds_specs_.push_back(i);
         break;
       }
     }
-  if (static_cast<int>(dds_specs.size()) > n_dds) dds_specs.resize(n_dds);
+  if (static_cast<int>(dds_specs_.size()) > n_dds) dds_specs_.resize(n_dds);
+}
 
-  std::vector<RunResult> results(specs.size());
-  json dds = json::array();
-  // The nodes print their own lines ("done: ...") on stdout: keep them out of the table.
-  std::fflush(stdout);
-  const int saved_stdout = dup(1);
-  if (FILE* null = std::fopen("/dev/null", "w")) {
-    dup2(fileno(null), 1);
-    std::fclose(null);
-  }
-  for (std::size_t i = 0; i < specs.size(); ++i) {
-    const RunSpec& r = specs[i];
+// Every fixed-H run in process, with its DDS spot check where one was chosen.
+void Bench::run_sweep() {
+  results_.resize(specs_.size());
+  for (std::size_t i = 0; i < specs_.size(); ++i) {
+    const RunSpec& r = specs_[i];
     const std::string dir = opt_.work_dir + "/inproc-" + std::to_string(i);
-    const bool keep = std::find(dds_specs.begin(), dds_specs.end(), i) != dds_specs.end();
-    results[i] = run_inproc_point(r, dir);
-    const RunResult& res = results[i];
-    std::fprintf(stderr, "[%zu/%zu %5.0f s] %-22s H %-9s %-11s rtol %-6s %-8s rms %-10s wall %s s\n", i + 1, specs.size(),
-                 seconds_since(t_start), variants_[r.variant].name.c_str(), time_text(r.h).c_str(), r.solver.c_str(),
+    const bool keep = std::find(dds_specs_.begin(), dds_specs_.end(), i) != dds_specs_.end();
+    results_[i] = run_inproc_point(r, dir);
+    const RunResult& res = results_[i];
+    std::fprintf(stderr, "[%zu/%zu %5.0f s] %-22s H %-9s %-11s rtol %-6s %-8s rms %-10s wall %s s\n", i + 1, specs_.size(),
+                 seconds_since(t_start_), variants_[r.variant].name.c_str(), time_text(r.h).c_str(), r.solver.c_str(),
                  num(r.rtol, "%.0e").c_str(), res.status.c_str(),
                  res.rms_below_reference ? "<ref" : num(res.rms_rel).c_str(), num(res.wall_time_s).c_str());
     if (keep) {
@@ -1147,89 +1203,105 @@ int Bench::run() {
       json d = dds_check(r, res);
       std::fprintf(stderr, "  DDS spot check: %s, outputs %s the in-process run's\n", d.value("status", "?").c_str(),
                    d.value("outputs_identical", false) ? "bit-identical to" : "DIFFERENT from");
-      dds.push_back(d);
+      dds_.push_back(d);
     }
     if (!opt_.keep_work_dir) {
       std::error_code ec;
       fs::remove_all(dir, ec);
     }
   }
+}
 
-  // Adaptive points: the shipped scheme, its orders with every Jacobi edge quadratic
-  // (SchemeVariant::shipped_quadratic), and the best fixed-H scheme at the scene's H (the
-  // swept H nearest it): the smallest max error of cvode_bdf at --rtol, an error below the
-  // reference's own counting as 0, the first variant on a tie; cvode_bdf at --rtol, with the
-  // scene's adaptive settings or the defaults of `step: adaptive`.
-  json adaptive_choice = json::array();
-  const std::vector<double> tolerances =
-      opt_.tolerances ? *opt_.tolerances
-                      : (opt_.quick ? std::vector<double>{1e-2, 1e-3} : std::vector<double>{1e-2, 3e-3, 1e-3, 3e-4, 1e-4});
-  {
-    // The scene's adaptive settings (time.max, min, initial), or the defaults a scene gets
-    // with `step: adaptive` alone.
-    try {
-      std::vector<std::string> o = opt_.overrides;
-      o.push_back("time.step=adaptive");
-      const config::Scene s = config::load_scene(variant_files_[0], o);
-      adaptive_max_ = scene_adaptive_ ? scene_adaptive_->max : s.time.adaptive->max;
-      adaptive_min_ = scene_adaptive_ ? scene_adaptive_->min : s.time.adaptive->min;
-      adaptive_initial_ = scene_adaptive_ ? scene_adaptive_->initial : s.time.adaptive->initial;
-    } catch (const std::exception& e) {
-      std::fprintf(stderr, "mechsim bench: no adaptive points: %s\n", e.what());
+// The swept H nearest the scene's step.
+double Bench::h_nearest_scene_step() const {
+  double h_own = grid_.front();
+  for (double h : grid_)
+    if (std::abs(std::log(h / h0_)) < std::abs(std::log(h_own / h0_))) h_own = h;
+  return h_own;
+}
+
+// The variant with the smallest max error of cvode_bdf at --rtol at H (an error below the
+// reference's own counting as 0, the first variant on a tie); -1 when none ran through.
+int Bench::best_fixed_variant_at(double h, double& best_error) const {
+  int best = -1;
+  best_error = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < specs_.size(); ++i) {
+    const auto& r = specs_[i];
+    const auto& res = results_[i];
+    if (r.sweep != "solver" || r.solver != "cvode_bdf" || r.rtol != opt_.rtol || r.h != h || res.status != "ok") continue;
+    const double e = res.max_below_reference ? 0.0 : res.max_rel;
+    if (std::isfinite(e) && e < best_error) {
+      best_error = e;
+      best = r.variant;
     }
-    double h_own = grid.front();
-    for (double h : grid)
-      if (std::abs(std::log(h / h0_)) < std::abs(std::log(h_own / h0_))) h_own = h;
-    int best = -1;
-    double best_error = std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < specs.size(); ++i) {
-      const auto& r = specs[i];
-      const auto& res = results[i];
-      if (r.sweep != "solver" || r.solver != "cvode_bdf" || r.rtol != opt_.rtol || r.h != h_own || res.status != "ok") continue;
-      const double e = res.max_below_reference ? 0.0 : res.max_rel;
-      if (std::isfinite(e) && e < best_error) {
-        best_error = e;
-        best = r.variant;
-      }
-    }
-    std::vector<int> chosen;
-    for (int v = 0; v < static_cast<int>(variants_.size()); ++v)
-      if (variants_[v].shipped) {
-        chosen.push_back(v);
-        adaptive_choice.push_back({{"variant", variants_[v].name}, {"why", "shipped"}});
-      }
-    // The shipped orders with quadratic Jacobi edges (scheme_variants): an error-controlled
-    // step may take longer steps with the higher-order predictor.
-    for (int v = 0; v < static_cast<int>(variants_.size()); ++v)
-      if (variants_[v].shipped_quadratic && !variants_[v].shipped) {
-        chosen.push_back(v);
-        adaptive_choice.push_back({{"variant", variants_[v].name}, {"why", "the shipped orders, Jacobi edges quadratic"}});
-      }
-    if (best >= 0 && std::find(chosen.begin(), chosen.end(), best) == chosen.end()) {
-      chosen.push_back(best);
-      adaptive_choice.push_back({{"variant", variants_[best].name},
-                                 {"why", "best fixed-H max error at H " + time_text(h_own) + " (cvode_bdf, rtol " + num(opt_.rtol, "%.0e") + ")"},
-                                 {"max_rel_at_h", finite_or_null(best_error)}});
-    } else if (best >= 0) {
-      for (auto& c : adaptive_choice)
-        if (c["variant"] == variants_[best].name)
-          c["why"] = c["why"].get<std::string>() + "; also the best fixed-H max error at H " + time_text(h_own);
-    }
-    if (tolerances.empty() || !(adaptive_max_ > 0)) adaptive_choice = json::array();  // --tolerances none
-    // Scales: the scene's; without any, each coupled field's range in the reference at the
-    // scene's H, as an engineer writes them after one run (docs/accuracy.md).
-    for (int v : chosen) {
-      if (scene_adaptive_ && !scene_adaptive_->scales.empty()) {
-        adaptive_scales_[v] = scene_adaptive_->scales;
-      } else {
-        adaptive_scales_[v] = reference_scales(v, h_own);
-        adaptive_scales_from_ = "reference range";
-      }
-    }
-    if (adaptive_choice.empty()) chosen.clear();
-    for (int v : chosen)
-      for (double tol : tolerances) adaptive_specs_.push_back({v, 0.0, "cvode_bdf", opt_.rtol, "adaptive", tol});
   }
+  return best;
+}
+
+// Adaptive points: the shipped scheme, its orders with every Jacobi edge quadratic
+// (SchemeVariant::shipped_quadratic), and the best fixed-H scheme at the scene's H (the
+// swept H nearest it): the smallest max error of cvode_bdf at --rtol, an error below the
+// reference's own counting as 0, the first variant on a tie; cvode_bdf at --rtol, with the
+// scene's adaptive settings or the defaults of `step: adaptive`. Fills adaptive_choice_,
+// the scales and adaptive_specs_.
+void Bench::choose_adaptive_points() {
+  tolerances_ = opt_.tolerances ? *opt_.tolerances
+                                : (opt_.quick ? std::vector<double>{1e-2, 1e-3} : std::vector<double>{1e-2, 3e-3, 1e-3, 3e-4, 1e-4});
+  // The scene's adaptive settings (time.max, min, initial), or the defaults a scene gets
+  // with `step: adaptive` alone.
+  try {
+    std::vector<std::string> o = opt_.overrides;
+    o.push_back("time.step=adaptive");
+    const config::Scene s = config::load_scene(variant_files_[0], o);
+    adaptive_max_ = scene_adaptive_ ? scene_adaptive_->max : s.time.adaptive->max;
+    adaptive_min_ = scene_adaptive_ ? scene_adaptive_->min : s.time.adaptive->min;
+    adaptive_initial_ = scene_adaptive_ ? scene_adaptive_->initial : s.time.adaptive->initial;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "mechsim bench: no adaptive points: %s\n", e.what());
+  }
+  const double h_own = h_nearest_scene_step();
+  double best_error = 0;
+  const int best = best_fixed_variant_at(h_own, best_error);
+  std::vector<int> chosen;
+  for (int v = 0; v < static_cast<int>(variants_.size()); ++v)
+    if (variants_[v].shipped) {
+      chosen.push_back(v);
+      adaptive_choice_.push_back({{"variant", variants_[v].name}, {"why", "shipped"}});
+    }
+  // The shipped orders with quadratic Jacobi edges (scheme_variants): an error-controlled
+  // step may take longer steps with the higher-order predictor.
+  for (int v = 0; v < static_cast<int>(variants_.size()); ++v)
+    if (variants_[v].shipped_quadratic && !variants_[v].shipped) {
+      chosen.push_back(v);
+      adaptive_choice_.push_back({{"variant", variants_[v].name}, {"why", "the shipped orders, Jacobi edges quadratic"}});
+    }
+  if (best >= 0 && std::find(chosen.begin(), chosen.end(), best) == chosen.end()) {
+    chosen.push_back(best);
+    adaptive_choice_.push_back({{"variant", variants_[best].name},
+                                {"why", "best fixed-H max error at H " + time_text(h_own) + " (cvode_bdf, rtol " + num(opt_.rtol, "%.0e") + ")"},
+                                {"max_rel_at_h", finite_or_null(best_error)}});
+  } else if (best >= 0) {
+    for (auto& c : adaptive_choice_)
+      if (c["variant"] == variants_[best].name)
+        c["why"] = c["why"].get<std::string>() + "; also the best fixed-H max error at H " + time_text(h_own);
+  }
+  if (tolerances_.empty() || !(adaptive_max_ > 0)) adaptive_choice_ = json::array();  // --tolerances none
+  // Scales: the scene's; without any, each coupled field's range in the reference at the
+  // scene's H, as an engineer writes them after one run (docs/accuracy.md).
+  for (int v : chosen) {
+    if (scene_adaptive_ && !scene_adaptive_->scales.empty()) {
+      adaptive_scales_[v] = scene_adaptive_->scales;
+    } else {
+      adaptive_scales_[v] = reference_scales(v, h_own);
+      adaptive_scales_from_ = "reference range";
+    }
+  }
+  if (adaptive_choice_.empty()) chosen.clear();
+  for (int v : chosen)
+    for (double tol : tolerances_) adaptive_specs_.push_back({v, 0.0, "cvode_bdf", opt_.rtol, "adaptive", tol});
+}
+
+void Bench::run_adaptive_points() {
   adaptive_results_.resize(adaptive_specs_.size());
   for (std::size_t i = 0; i < adaptive_specs_.size(); ++i) {
     const RunSpec& r = adaptive_specs_[i];
@@ -1237,7 +1309,7 @@ int Bench::run() {
     adaptive_results_[i] = run_inproc_point(r, dir);
     const RunResult& res = adaptive_results_[i];
     std::fprintf(stderr, "[adaptive %zu/%zu %5.0f s] %-22s tol %-6s %-11s rtol %-6s %-8s steps %-7ld max %-10s rms %-10s wall %s s%s%s\n",
-                 i + 1, adaptive_specs_.size(), seconds_since(t_start), variants_[r.variant].name.c_str(),
+                 i + 1, adaptive_specs_.size(), seconds_since(t_start_), variants_[r.variant].name.c_str(),
                  tol_text(r.tolerance).c_str(), r.solver.c_str(), num(r.rtol, "%.0e").c_str(), res.status.c_str(), res.macro_steps,
                  res.max_below_reference ? "<ref" : num(res.max_rel).c_str(),
                  res.rms_below_reference ? "<ref" : num(res.rms_rel).c_str(), num(res.wall_time_s).c_str(),
@@ -1247,20 +1319,28 @@ int Bench::run() {
       fs::remove_all(dir, ec);
     }
   }
+}
 
-  // Observed order per scheme: cvode_bdf at the tightest tolerance swept, over the points
-  // that are neither saturated by the tolerance/reference floor nor outside the asymptotic
-  // range (docs/accuracy.md).
-  json orders = json::array();
+// The tightest node tolerance swept (the observed orders are fitted there).
+double Bench::tightest_rtol() const {
   double tight = opt_.rtol;
-  for (double rt : rtols) tight = std::min(tight, rt);
+  for (double rt : rtols_) tight = std::min(tight, rt);
+  return tight;
+}
+
+// Observed order per scheme: cvode_bdf at the tightest tolerance swept, over the points
+// that are neither saturated by the tolerance/reference floor nor outside the asymptotic
+// range (docs/accuracy.md).
+json Bench::observed_orders() {
+  json orders = json::array();
+  const double tight = tightest_rtol();
   for (int v = 0; v < static_cast<int>(variants_.size()); ++v) {
     std::vector<double> hs, es;
     json used = json::array();
-    for (std::size_t i = 0; i < specs.size(); ++i) {
-      const auto& r = specs[i];
+    for (std::size_t i = 0; i < specs_.size(); ++i) {
+      const auto& r = specs_[i];
       if (r.variant != v || r.solver != "cvode_bdf" || r.rtol != tight) continue;
-      const auto& res = results[i];
+      const auto& res = results_[i];
       if (res.status != "ok" || !std::isfinite(res.rms_rel)) continue;
       double floor_rel = 0;
       const Reference& ref = reference(v, r.h);
@@ -1280,60 +1360,194 @@ int Bench::run() {
                       {"steps_used_s", used},
                       {"note", std::isfinite(p) ? "" : "fewer than 3 non-saturated stable points"}});
   }
+  return orders;
+}
 
-  // Best scheme against zero-order-hold Jacobi: the largest factor e_zoh / e over pairs of
-  // runs where the other run took no more wall time than the zero-order-hold one.
+// Best scheme against zero-order-hold Jacobi: the largest factor e_zoh / e over pairs of
+// runs where the other run took no more wall time than the zero-order-hold one. Sets
+// best_scheme_ (the plots keep it).
+json Bench::best_vs_zero_order_hold() {
   json ten_x = json::object();
-  {
-    std::vector<std::pair<double, double>> zoh;
-    for (std::size_t i = 0; i < specs.size(); ++i)
-      if (variants_[specs[i].variant].zero_order_hold_jacobi && results[i].status == "ok" && std::isfinite(results[i].rms_rel))
-        zoh.push_back({results[i].wall_time_s, results[i].rms_rel});
-    double best = 0;
-    json where;
-    bool any_other_ok = false;
-    for (std::size_t i = 0; i < specs.size(); ++i) {
-      if (variants_[specs[i].variant].zero_order_hold_jacobi || results[i].status != "ok") continue;
-      any_other_ok = true;
-      // A refused (below reference accuracy) error is bounded by the reference's error.
-      const double e = std::isfinite(results[i].rms_rel) ? results[i].rms_rel : results[i].rms_rel_bound;
-      if (!(e > 0)) continue;
-      for (const auto& [wz, ez] : zoh)
-        if (results[i].wall_time_s <= wz && ez / e > best) {
-          best = ez / e;
-          where = {{"scheme", variants_[specs[i].variant].name}, {"solver", specs[i].solver}, {"rtol", specs[i].rtol},
-                   {"step_s", specs[i].h}, {"wall_time_s", results[i].wall_time_s}, {"rms_rel", e},
-                   {"bounded_by_reference", !std::isfinite(results[i].rms_rel)}, {"zoh_wall_time_s", wz}, {"zoh_rms_rel", ez}};
-        }
+  std::vector<std::pair<double, double>> zoh;
+  for (std::size_t i = 0; i < specs_.size(); ++i)
+    if (variants_[specs_[i].variant].zero_order_hold_jacobi && results_[i].status == "ok" && std::isfinite(results_[i].rms_rel))
+      zoh.push_back({results_[i].wall_time_s, results_[i].rms_rel});
+  double best = 0;
+  json where;
+  bool any_other_ok = false;
+  for (std::size_t i = 0; i < specs_.size(); ++i) {
+    if (variants_[specs_[i].variant].zero_order_hold_jacobi || results_[i].status != "ok") continue;
+    any_other_ok = true;
+    // A refused (below reference accuracy) error is bounded by the reference's error.
+    const double e = std::isfinite(results_[i].rms_rel) ? results_[i].rms_rel : results_[i].rms_rel_bound;
+    if (!(e > 0)) continue;
+    for (const auto& [wz, ez] : zoh)
+      if (results_[i].wall_time_s <= wz && ez / e > best) {
+        best = ez / e;
+        where = {{"scheme", variants_[specs_[i].variant].name}, {"solver", specs_[i].solver}, {"rtol", specs_[i].rtol},
+                 {"step_s", specs_[i].h}, {"wall_time_s", results_[i].wall_time_s}, {"rms_rel", e},
+                 {"bounded_by_reference", !std::isfinite(results_[i].rms_rel)}, {"zoh_wall_time_s", wz}, {"zoh_rms_rel", ez}};
+      }
+  }
+  ten_x["definition"] = "max over run pairs of rms_rel(zero-order-hold Jacobi) / rms_rel(other) where the other run's wall time <= the zero-order-hold run's";
+  ten_x["zoh_stable_points"] = zoh.size();
+  bool zoh_swept = false;
+  for (const auto& v : variants_) zoh_swept = zoh_swept || v.zero_order_hold_jacobi;
+  if (!zoh_swept) {
+    ten_x["factor"] = nullptr;
+    ten_x["met"] = nullptr;
+    ten_x["note"] = "zero-order-hold Jacobi not swept (--schemes)";
+  } else if (zoh.empty()) {
+    ten_x["factor"] = nullptr;
+    ten_x["met"] = any_other_ok;
+    ten_x["note"] = any_other_ok ? "zero-order-hold Jacobi is unstable at every swept H; other schemes are not"
+                                 : "no stable run";
+  } else if (!(best > 0)) {
+    ten_x["factor"] = nullptr;
+    ten_x["met"] = nullptr;
+    ten_x["note"] = "no other run with a measurable error at no more wall time than a zero-order-hold run";
+  } else {
+    ten_x["factor"] = best;
+    ten_x["met"] = best >= 10;
+    ten_x["at"] = where;
+    if (where.is_object()) best_scheme_ = where["scheme"].get<std::string>();
+  }
+  return ten_x;
+}
+
+// --- adaptive against fixed H ----------------------------------------------------------
+
+// A fixed-H row of the comparison: cvode_bdf at --rtol, status ok.
+bool Bench::is_fixed_row(std::size_t i) const {
+  return specs_[i].solver == "cvode_bdf" && specs_[i].rtol == opt_.rtol && results_[i].status == "ok";
+}
+
+// The fixed-H rows in (wall time, error), every scheme and H; rows below reference accuracy
+// only by their wall time.
+FixedEnvelope Bench::fixed_envelope(bool use_max) const {
+  FixedEnvelope env;
+  for (std::size_t i = 0; i < specs_.size(); ++i) {
+    if (!is_fixed_row(i)) continue;
+    const auto& res = results_[i];
+    if (use_max ? res.max_below_reference : res.rms_below_reference) {
+      env.below_walls.push_back(res.wall_time_s);
+      continue;
     }
-    ten_x["definition"] = "max over run pairs of rms_rel(zero-order-hold Jacobi) / rms_rel(other) where the other run's wall time <= the zero-order-hold run's";
-    ten_x["zoh_stable_points"] = zoh.size();
-    bool zoh_swept = false;
-    for (const auto& v : variants_) zoh_swept = zoh_swept || v.zero_order_hold_jacobi;
-    if (!zoh_swept) {
-      ten_x["factor"] = nullptr;
-      ten_x["met"] = nullptr;
-      ten_x["note"] = "zero-order-hold Jacobi not swept (--schemes)";
-    } else if (zoh.empty()) {
-      ten_x["factor"] = nullptr;
-      ten_x["met"] = any_other_ok;
-      ten_x["note"] = any_other_ok ? "zero-order-hold Jacobi is unstable at every swept H; other schemes are not"
-                                   : "no stable run";
-    } else if (!(best > 0)) {
-      ten_x["factor"] = nullptr;
-      ten_x["met"] = nullptr;
-      ten_x["note"] = "no other run with a measurable error at no more wall time than a zero-order-hold run";
+    const double e = use_max ? res.max_rel : res.rms_rel;
+    if (!(e > 0) || !std::isfinite(e) || !(res.wall_time_s > 0)) continue;
+    env.points.push_back({res.wall_time_s, e});
+    env.rows.push_back(i);
+    env.wall_lo = std::isnan(env.wall_lo) ? res.wall_time_s : std::min(env.wall_lo, res.wall_time_s);
+    env.wall_hi = std::isnan(env.wall_hi) ? res.wall_time_s : std::max(env.wall_hi, res.wall_time_s);
+  }
+  return env;
+}
+
+// The same scheme at fixed H in (macro steps, error): what adapting the step alone buys,
+// free of the wall-time noise of short runs.
+std::vector<std::pair<double, double>> Bench::same_scheme_by_steps(int variant, bool use_max) const {
+  std::vector<std::pair<double, double>> same;
+  for (std::size_t i = 0; i < specs_.size(); ++i) {
+    if (!is_fixed_row(i) || specs_[i].variant != variant || (use_max ? results_[i].max_below_reference : results_[i].rms_below_reference)) continue;
+    const double e = use_max ? results_[i].max_rel : results_[i].rms_rel;
+    if (e > 0 && std::isfinite(e) && results_[i].macro_steps > 0) same.push_back({static_cast<double>(results_[i].macro_steps), e});
+  }
+  return same;
+}
+
+// One adaptive point against the fixed-H envelope at its wall time, and against the same
+// scheme at its number of macro steps.
+json Bench::adaptive_point_vs_fixed(std::size_t j, bool use_max, const FixedEnvelope& env,
+                                    const std::vector<std::pair<double, double>>& same) const {
+  const auto& r = adaptive_specs_[j];
+  const auto& res = adaptive_results_[j];
+  const bool below = use_max ? res.max_below_reference : res.rms_below_reference;
+  const double e = use_max ? res.max_rel : res.rms_rel;
+  json p{{"tolerance", r.tolerance},
+         {"status", res.status},
+         {"macro_steps", res.macro_steps},
+         {"wall_time_s", finite_or_null(res.wall_time_s)},
+         {"adaptive_error", finite_or_null(e)},
+         {"adaptive_below_reference_accuracy", below},
+         {"fixed_error", nullptr},
+         {"factor", nullptr}};
+  if (res.status != "ok") {
+    p["note"] = "adaptive run " + res.status;
+  } else if (below) {
+    p["note"] = "adaptive error below reference accuracy: left out of the factor";
+  } else if (!(e > 0) || !std::isfinite(e)) {
+    p["note"] = "no finite adaptive error";
+  } else {
+    int lo = -1, hi = -1;
+    const double fe = envelope_at(env.points, res.wall_time_s, &lo, &hi);
+    if (!std::isfinite(fe)) {
+      p["fixed_error"] = "outside";
+      p["note"] = "adaptive wall time outside the fixed-H rows' wall time range";
     } else {
-      ten_x["factor"] = best;
-      ten_x["met"] = best >= 10;
-      ten_x["at"] = where;
-      if (where.is_object()) best_scheme_ = where["scheme"].get<std::string>();
+      p["fixed_error"] = fe;
+      json between = json::array();
+      for (int k : {lo, hi}) {
+        if (k < 0 || (k == hi && hi == lo)) continue;
+        const std::size_t i = env.rows[k];
+        between.push_back({{"scheme", variants_[specs_[i].variant].name}, {"step_s", specs_[i].h},
+                           {"wall_time_s", results_[i].wall_time_s}, {"error", env.points[k].second}});
+      }
+      p["fixed_envelope_corners"] = between;
+      const bool fixed_below = std::any_of(env.below_walls.begin(), env.below_walls.end(),
+                                           [&](double w) { return w <= res.wall_time_s; });
+      if (fixed_below) p["note"] = "a fixed-H row at no more wall time is below reference accuracy: left out of the factor";
+      else p["factor"] = fe / e;
     }
   }
+  p["fixed_error_same_scheme_at_equal_steps"] = nullptr;
+  p["factor_at_equal_steps"] = nullptr;
+  if (res.status == "ok" && !below && e > 0 && std::isfinite(e) && res.macro_steps > 0) {
+    const double fs = envelope_at(same, static_cast<double>(res.macro_steps), nullptr, nullptr);
+    if (std::isfinite(fs)) {
+      p["fixed_error_same_scheme_at_equal_steps"] = fs;
+      p["factor_at_equal_steps"] = fs / e;
+    }
+  }
+  return p;
+}
 
-  // Adaptive against fixed H at equal wall time: for each adaptive point, the lower envelope
-  // of the fixed-H rows (cvode_bdf at --rtol, every scheme and H, status ok) in (wall time,
-  // error), interpolated log-log at the point's wall time, over the point's error.
+// The adaptive points of one variant against fixed H, max or RMS error, with the best factors.
+json Bench::adaptive_curve_vs_fixed(int variant, bool use_max) const {
+  const FixedEnvelope env = fixed_envelope(use_max);
+  const auto same = same_scheme_by_steps(variant, use_max);
+  json f{{"points", json::array()},
+         {"fixed_rows", env.points.size()},
+         {"fixed_rows_below_reference_accuracy", env.below_walls.size()},
+         {"fixed_wall_time_range_s", {finite_or_null(env.wall_lo), finite_or_null(env.wall_hi)}}};
+  double best = kNaN, best_steps = kNaN;
+  json best_at;
+  for (std::size_t j = 0; j < adaptive_specs_.size(); ++j) {
+    if (adaptive_specs_[j].variant != variant) continue;
+    json p = adaptive_point_vs_fixed(j, use_max, env, same);
+    if (p["factor"].is_number()) {
+      const double factor = p["factor"].get<double>();
+      if (!(factor <= best)) {
+        best = factor;
+        best_at = adaptive_specs_[j].tolerance;
+      }
+    }
+    if (p["factor_at_equal_steps"].is_number()) {
+      const double factor = p["factor_at_equal_steps"].get<double>();
+      if (!(factor <= best_steps)) best_steps = factor;
+    }
+    f["points"].push_back(p);
+  }
+  f["best_factor_at_equal_steps"] = finite_or_null(best_steps);
+  f["best_factor"] = finite_or_null(best);
+  f["best_at_tolerance"] = best_at;
+  f["target_5x_met"] = std::isfinite(best) ? json(best >= 5) : json(nullptr);
+  return f;
+}
+
+// Adaptive against fixed H at equal wall time: for each adaptive point, the lower envelope
+// of the fixed-H rows (cvode_bdf at --rtol, every scheme and H, status ok) in (wall time,
+// error), interpolated log-log at the point's wall time, over the point's error.
+json Bench::adaptive_vs_fixed() const {
   json adaptive_vs_fixed = {
       {"definition",
        "per adaptive point: factor = fixed_error / adaptive_error, fixed_error the lower envelope of (wall_time_s, error) "
@@ -1350,165 +1564,56 @@ int Bench::run() {
       {"time_min_s", adaptive_min_},
       {"time_initial_s", adaptive_initial_},
       {"scales_from", adaptive_scales_from_},
-      {"variants", adaptive_choice},
+      {"variants", adaptive_choice_},
       {"curves", json::array()}};
-  if (tolerances.empty()) adaptive_vs_fixed["note"] = "no adaptive points (--tolerances none)";
-  {
-    auto fixed_row = [&](std::size_t i) {
-      return specs[i].solver == "cvode_bdf" && specs[i].rtol == opt_.rtol && results[i].status == "ok";
-    };
-    auto figure = [&](int variant, bool use_max) {
-      std::vector<std::pair<double, double>> pts;
-      std::vector<std::size_t> src;
-      std::vector<double> below_walls;
-      double wall_lo = kNaN, wall_hi = kNaN;
-      for (std::size_t i = 0; i < specs.size(); ++i) {
-        if (!fixed_row(i)) continue;
-        const auto& res = results[i];
-        if (use_max ? res.max_below_reference : res.rms_below_reference) {
-          below_walls.push_back(res.wall_time_s);
-          continue;
-        }
-        const double e = use_max ? res.max_rel : res.rms_rel;
-        if (!(e > 0) || !std::isfinite(e) || !(res.wall_time_s > 0)) continue;
-        pts.push_back({res.wall_time_s, e});
-        src.push_back(i);
-        wall_lo = std::isnan(wall_lo) ? res.wall_time_s : std::min(wall_lo, res.wall_time_s);
-        wall_hi = std::isnan(wall_hi) ? res.wall_time_s : std::max(wall_hi, res.wall_time_s);
-      }
-      // The same scheme at fixed H in (macro steps, error): what adapting the step alone buys,
-      // free of the wall-time noise of short runs.
-      std::vector<std::pair<double, double>> same;
-      for (std::size_t i = 0; i < specs.size(); ++i) {
-        if (!fixed_row(i) || specs[i].variant != variant || (use_max ? results[i].max_below_reference : results[i].rms_below_reference)) continue;
-        const double e = use_max ? results[i].max_rel : results[i].rms_rel;
-        if (e > 0 && std::isfinite(e) && results[i].macro_steps > 0) same.push_back({static_cast<double>(results[i].macro_steps), e});
-      }
-      double best_steps = kNaN;
-      json f{{"points", json::array()},
-             {"fixed_rows", pts.size()},
-             {"fixed_rows_below_reference_accuracy", below_walls.size()},
-             {"fixed_wall_time_range_s", {finite_or_null(wall_lo), finite_or_null(wall_hi)}}};
-      double best = kNaN;
-      json best_at;
-      for (std::size_t j = 0; j < adaptive_specs_.size(); ++j) {
-        const auto& r = adaptive_specs_[j];
-        if (r.variant != variant) continue;
-        const auto& res = adaptive_results_[j];
-        const bool below = use_max ? res.max_below_reference : res.rms_below_reference;
-        const double e = use_max ? res.max_rel : res.rms_rel;
-        json p{{"tolerance", r.tolerance},
-               {"status", res.status},
-               {"macro_steps", res.macro_steps},
-               {"wall_time_s", finite_or_null(res.wall_time_s)},
-               {"adaptive_error", finite_or_null(e)},
-               {"adaptive_below_reference_accuracy", below},
-               {"fixed_error", nullptr},
-               {"factor", nullptr}};
-        if (res.status != "ok") {
-          p["note"] = "adaptive run " + res.status;
-        } else if (below) {
-          p["note"] = "adaptive error below reference accuracy: left out of the factor";
-        } else if (!(e > 0) || !std::isfinite(e)) {
-          p["note"] = "no finite adaptive error";
-        } else {
-          int lo = -1, hi = -1;
-          const double fe = envelope_at(pts, res.wall_time_s, &lo, &hi);
-          if (!std::isfinite(fe)) {
-            p["fixed_error"] = "outside";
-            p["note"] = "adaptive wall time outside the fixed-H rows' wall time range";
-          } else {
-            p["fixed_error"] = fe;
-            json between = json::array();
-            for (int k : {lo, hi}) {
-              if (k < 0 || (k == hi && hi == lo)) continue;
-              const std::size_t i = src[k];
-              between.push_back({{"scheme", variants_[specs[i].variant].name}, {"step_s", specs[i].h},
-                                 {"wall_time_s", results[i].wall_time_s}, {"error", pts[k].second}});
-            }
-            p["fixed_envelope_corners"] = between;
-            const bool fixed_below = std::any_of(below_walls.begin(), below_walls.end(),
-                                                 [&](double w) { return w <= res.wall_time_s; });
-            if (fixed_below) {
-              p["note"] = "a fixed-H row at no more wall time is below reference accuracy: left out of the factor";
-            } else {
-              const double factor = fe / e;
-              p["factor"] = factor;
-              if (!(factor <= best)) {
-                best = factor;
-                best_at = r.tolerance;
-              }
-            }
-          }
-        }
-        p["fixed_error_same_scheme_at_equal_steps"] = nullptr;
-        p["factor_at_equal_steps"] = nullptr;
-        if (res.status == "ok" && !below && e > 0 && std::isfinite(e) && res.macro_steps > 0) {
-          const double fs = envelope_at(same, static_cast<double>(res.macro_steps), nullptr, nullptr);
-          if (std::isfinite(fs)) {
-            p["fixed_error_same_scheme_at_equal_steps"] = fs;
-            p["factor_at_equal_steps"] = fs / e;
-            if (!(fs / e <= best_steps)) best_steps = fs / e;
-          }
-        }
-        f["points"].push_back(p);
-      }
-      f["best_factor_at_equal_steps"] = finite_or_null(best_steps);
-      f["best_factor"] = finite_or_null(best);
-      f["best_at_tolerance"] = best_at;
-      f["target_5x_met"] = std::isfinite(best) ? json(best >= 5) : json(nullptr);
-      return f;
-    };
-    for (const auto& c : adaptive_choice) {
-      int v = 0;
-      while (variants_[v].name != c["variant"]) ++v;
-      json curve = figure(v, true);
-      curve["scheme"] = "adaptive " + variants_[v].name;
-      curve["variant"] = variants_[v].name;
-      curve["error"] = "max_rel";
-      curve["rms"] = figure(v, false);
-      curve["rms"]["error"] = "rms_rel";
-      adaptive_vs_fixed["curves"].push_back(curve);
-    }
+  if (tolerances_.empty()) adaptive_vs_fixed["note"] = "no adaptive points (--tolerances none)";
+  for (const auto& c : adaptive_choice_) {
+    int v = 0;
+    while (variants_[v].name != c["variant"]) ++v;
+    json curve = adaptive_curve_vs_fixed(v, true);
+    curve["scheme"] = "adaptive " + variants_[v].name;
+    curve["variant"] = variants_[v].name;
+    curve["error"] = "max_rel";
+    curve["rms"] = adaptive_curve_vs_fixed(v, false);
+    curve["rms"]["error"] = "rms_rel";
+    adaptive_vs_fixed["curves"].push_back(curve);
   }
+  return adaptive_vs_fixed;
+}
 
-  std::fflush(stdout);
-  if (saved_stdout >= 0) {
-    dup2(saved_stdout, 1);
-    close(saved_stdout);
-  }
-  const double duration = seconds_since(t_start);
-  // Table.
+// --- the table and the JSON --------------------------------------------------------------
+
+// One line of the table.
+std::string Bench::table_line(const std::string& scheme, const std::string& h, const RunSpec& r, const RunResult& res) const {
+  char line[512];
+  std::snprintf(line, sizeof line, "%-22s %-9s %-11s %-6s %-9s %-10s %-10s %-9s %-9s\n", scheme.c_str(), h.c_str(),
+                r.solver.c_str(), num(r.rtol, "%.0e").c_str(), res.status.c_str(),
+                res.rms_below_reference ? "<ref" : num(res.rms_rel).c_str(),
+                res.max_below_reference ? "<ref" : num(res.max_rel).c_str(), num(res.wall_time_s, "%.3f").c_str(),
+                res.solver.is_object() ? std::to_string(res.solver.value("steps", 0L)).c_str() : "-");
+  return line;
+}
+
+void Bench::print_rows() {
   out_ << "mechsim bench " << scene_name_ << ": errors are the RMS (max) of the worst compared signal, relative to the reference range; '<ref' = below the reference's own error\n";
   char line[512];
   std::snprintf(line, sizeof line, "%-22s %-9s %-11s %-6s %-9s %-10s %-10s %-9s %-9s\n", "scheme", "H", "solver", "rtol", "status",
                 "rms_rel", "max_rel", "wall_s", "steps");
   out_ << line;
-  for (std::size_t i = 0; i < specs.size(); ++i) {
-    const auto& r = specs[i];
-    const auto& res = results[i];
-    std::snprintf(line, sizeof line, "%-22s %-9s %-11s %-6s %-9s %-10s %-10s %-9s %-9s\n", variants_[r.variant].name.c_str(),
-                  time_text(r.h).c_str(), r.solver.c_str(), num(r.rtol, "%.0e").c_str(), res.status.c_str(),
-                  res.rms_below_reference ? "<ref" : num(res.rms_rel).c_str(),
-                  res.max_below_reference ? "<ref" : num(res.max_rel).c_str(), num(res.wall_time_s, "%.3f").c_str(),
-                  res.solver.is_object() ? std::to_string(res.solver.value("steps", 0L)).c_str() : "-");
-    out_ << line;
-  }
-  for (std::size_t i = 0; i < adaptive_specs_.size(); ++i) {
-    const auto& r = adaptive_specs_[i];
-    const auto& res = adaptive_results_[i];
-    std::snprintf(line, sizeof line, "%-22s %-9s %-11s %-6s %-9s %-10s %-10s %-9s %-9s\n", scheme_name(r).c_str(),
-                  ("tol " + tol_text(r.tolerance)).c_str(), r.solver.c_str(), num(r.rtol, "%.0e").c_str(), res.status.c_str(),
-                  res.rms_below_reference ? "<ref" : num(res.rms_rel).c_str(),
-                  res.max_below_reference ? "<ref" : num(res.max_rel).c_str(), num(res.wall_time_s, "%.3f").c_str(),
-                  res.solver.is_object() ? std::to_string(res.solver.value("steps", 0L)).c_str() : "-");
-    out_ << line;
-  }
-  out_ << "observed order (cvode_bdf, rtol " << num(tight, "%.0e") << "):";
+  for (std::size_t i = 0; i < specs_.size(); ++i)
+    out_ << table_line(variants_[specs_[i].variant].name, time_text(specs_[i].h), specs_[i], results_[i]);
+  for (std::size_t i = 0; i < adaptive_specs_.size(); ++i)
+    out_ << table_line(scheme_name(adaptive_specs_[i]), "tol " + tol_text(adaptive_specs_[i].tolerance), adaptive_specs_[i],
+                       adaptive_results_[i]);
+}
+
+// The observed orders, the DDS spot checks and the best scheme against zero-order hold.
+void Bench::print_findings(const json& orders, const json& ten_x) {
+  out_ << "observed order (cvode_bdf, rtol " << num(tightest_rtol(), "%.0e") << "):";
   for (const auto& o : orders)
     out_ << "  " << o["scheme"].get<std::string>() << " " << (o["order"].is_number() ? num(o["order"].get<double>(), "%.2f") : "-");
   out_ << "\n";
-  for (const auto& d : dds)
+  for (const auto& d : dds_)
     out_ << "DDS spot check " << d["scheme"].get<std::string>() << " H " << time_text(d["step_s"].get<double>()) << ": "
          << d.value("status", "?") << ", outputs " << (d.value("outputs_identical", false) ? "bit-identical to" : "DIFFERENT from")
          << " the in-process run, wall " << num(d.value("wall_time_s", kNaN)) << " s (in process "
@@ -1519,6 +1624,9 @@ int Bench::run() {
                                          time_text(ten_x["at"]["step_s"].get<double>()) + ")"
                                    : "")
        << "\n";
+}
+
+void Bench::print_adaptive_vs_fixed(const json& adaptive_vs_fixed) {
   for (const auto& c : adaptive_vs_fixed["curves"]) {
     auto factor_text = [](const json& f, const char* what) {
       std::string t = std::string(what) + " error ";
@@ -1552,45 +1660,99 @@ int Bench::run() {
            << one(q) << "\n";
     }
   }
-  out_ << "bench duration " << num(duration, "%.1f") << " s\n";
+}
 
-  plots(specs, results, orders);
+void Bench::write_json(const json& orders, const json& ten_x, const json& adaptive_vs_fixed, double duration) {
+  json refs = json::array();
+  for (const auto& [key, ref] : refs_)
+    refs.push_back({{"coupling_element", key.first}, {"step_s", key.second}, {"error", ref->error},
+                    {"rtol", ref->run.rtol}, {"wall_time_s", ref->run.wall_time_s}, {"accuracy", ref->accuracy_json}});
+  for (std::size_t i = 0; i < adaptive_specs_.size(); ++i)
+    if (adaptive_results_[i].reference.is_object()) {
+      json a = adaptive_results_[i].reference;
+      a["scheme"] = scheme_name(adaptive_specs_[i]);
+      refs.push_back(a);
+    }
+  json rows = json::array();
+  for (std::size_t i = 0; i < specs_.size(); ++i) rows.push_back(row_json(specs_[i], results_[i]));
+  for (std::size_t i = 0; i < adaptive_specs_.size(); ++i) rows.push_back(row_json(adaptive_specs_[i], adaptive_results_[i]));
+  json schemes = json::array();
+  for (auto& v : variants_) schemes.push_back(v.name);
+  json doc{{"schema_version", tools::schema_version},
+           {"provenance", tools::provenance(opt_.scene_path)},
+           {"kind", "bench"},
+           {"scene", scene_name_},
+           {"overrides", opt_.overrides},
+           {"options", {{"quick", opt_.quick}, {"repeat", opt_.repeat}, {"steps_s", grid_}, {"solvers", solvers_}, {"rtol", opt_.rtol}, {"rtols", rtols_},
+                        {"tolerances", tolerances_},
+                        {"schemes", schemes}}},
+           {"schemes_refused", refused_variants_},
+           {"references", refs},
+           {"rows", rows},
+           {"orders", orders},
+           {"dds_checks", dds_},
+           {"best_vs_zero_order_hold", ten_x},
+           {"adaptive_vs_fixed", adaptive_vs_fixed},
+           {"duration_s", duration}};
+  if (!opt_.plots_dir.empty())
+    doc["files"] = {{"work_precision_png", opt_.plots_dir + "/" + scene_name_ + "_work_precision.png"},
+                    {"error_vs_step_png", opt_.plots_dir + "/" + scene_name_ + "_error_vs_step.png"}};
+  tools::write_json_file(opt_.json_path, doc);
+}
 
-  if (!opt_.json_path.empty()) {
-    json refs = json::array();
-    for (const auto& [key, ref] : refs_)
-      refs.push_back({{"coupling_element", key.first}, {"step_s", key.second}, {"error", ref->error},
-                      {"rtol", ref->run.rtol}, {"wall_time_s", ref->run.wall_time_s}, {"accuracy", ref->accuracy_json}});
-    for (std::size_t i = 0; i < adaptive_specs_.size(); ++i)
-      if (adaptive_results_[i].reference.is_object()) {
-        json a = adaptive_results_[i].reference;
-        a["scheme"] = scheme_name(adaptive_specs_[i]);
-        refs.push_back(a);
-      }
-    json rows = json::array();
-    for (std::size_t i = 0; i < specs.size(); ++i) rows.push_back(row_json(specs[i], results[i]));
-    for (std::size_t i = 0; i < adaptive_specs_.size(); ++i) rows.push_back(row_json(adaptive_specs_[i], adaptive_results_[i]));
-    json doc{{"schema_version", tools::schema_version},
-             {"provenance", tools::provenance(opt_.scene_path)},
-             {"kind", "bench"},
-             {"scene", scene_name_},
-             {"overrides", opt_.overrides},
-             {"options", {{"quick", opt_.quick}, {"repeat", opt_.repeat}, {"steps_s", grid}, {"solvers", solvers}, {"rtol", opt_.rtol}, {"rtols", rtols},
-                          {"tolerances", tolerances},
-                          {"schemes", [&] { json a = json::array(); for (auto& v : variants_) a.push_back(v.name); return a; }()}}},
-             {"schemes_refused", refused_variants},
-             {"references", refs},
-             {"rows", rows},
-             {"orders", orders},
-             {"dds_checks", dds},
-             {"best_vs_zero_order_hold", ten_x},
-             {"adaptive_vs_fixed", adaptive_vs_fixed},
-             {"duration_s", duration}};
-    if (!opt_.plots_dir.empty())
-      doc["files"] = {{"work_precision_png", opt_.plots_dir + "/" + scene_name_ + "_work_precision.png"},
-                      {"error_vs_step_png", opt_.plots_dir + "/" + scene_name_ + "_error_vs_step.png"}};
-    tools::write_json_file(opt_.json_path, doc);
+// The nodes print their own lines ("done: ...") on stdout: this keeps them out of the
+// table while it lives.
+class StdoutToDevNull {
+ public:
+  StdoutToDevNull() {
+    std::fflush(stdout);
+    saved_ = dup(1);
+    if (FILE* null = std::fopen("/dev/null", "w")) {
+      dup2(fileno(null), 1);
+      std::fclose(null);
+    }
   }
+  ~StdoutToDevNull() {
+    std::fflush(stdout);
+    if (saved_ >= 0) {
+      dup2(saved_, 1);
+      close(saved_);
+    }
+  }
+  StdoutToDevNull(const StdoutToDevNull&) = delete;
+  StdoutToDevNull& operator=(const StdoutToDevNull&) = delete;
+
+ private:
+  int saved_ = -1;
+};
+
+// The bench in the order it runs: the scene, the variants and the grid; the fixed-H runs
+// (with the DDS spot checks), the adaptive points; the figures drawn from them; the table,
+// the plots and the JSON.
+int Bench::run() {
+  t_start_ = Clock::now();
+  const std::unique_ptr<config::Scene> base = load_base_scene();
+  if (!base) return 2;
+  if (!take_scene(*base)) return 1;
+  if (!choose_variants() || !plan_sweep(*base)) return 2;
+  choose_dds_checks();
+  json orders, ten_x, adaptive_vs_fixed_json;
+  {
+    const StdoutToDevNull quiet_nodes;
+    run_sweep();
+    choose_adaptive_points();
+    run_adaptive_points();
+    orders = observed_orders();
+    ten_x = best_vs_zero_order_hold();
+    adaptive_vs_fixed_json = adaptive_vs_fixed();
+  }
+  const double duration = seconds_since(t_start_);
+  print_rows();
+  print_findings(orders, ten_x);
+  print_adaptive_vs_fixed(adaptive_vs_fixed_json);
+  out_ << "bench duration " << num(duration, "%.1f") << " s\n";
+  plots(specs_, results_, orders);
+  if (!opt_.json_path.empty()) write_json(orders, ten_x, adaptive_vs_fixed_json, duration);
   if (!opt_.keep_work_dir) {
     std::error_code ec;
     fs::remove_all(opt_.work_dir, ec);
