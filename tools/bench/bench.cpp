@@ -309,7 +309,7 @@ int Bench::run() {
   print_findings(orders, ten_x);
   print_adaptive_vs_fixed(adaptive_vs_fixed_json);
   out_ << "bench duration " << num(duration, "%.1f") << " s\n";
-  plots(specs_, results_, orders);
+  plots(orders);
   if (!opt_.json_path.empty()) write_json(orders, ten_x, adaptive_vs_fixed_json, duration);
   if (!opt_.keep_work_dir) {
     std::error_code ec;

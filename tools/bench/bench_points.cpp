@@ -189,6 +189,56 @@ std::vector<std::pair<std::string, double>> Bench::reference_scales(int variant,
   return out;
 }
 
+// Short runs are timed again (the outputs are the same bit for bit) and the fastest is
+// kept: thread start and scheduling noise are a large part of a 50 ms run. Up to ten runs,
+// until half a second has gone by; and every run at least --repeat times (runs of a second
+// scatter by some 20 % on a shared machine). Returns the fastest wall time, `first_wall`
+// included.
+double Bench::fastest_of_repeats(const config::Scene& scene, cosim::InprocRunOptions io, bool first_ok, double first_wall) {
+  double fastest = first_wall, timed = first_wall;
+  for (int repeat = 1; repeat < std::max(10, opt_.repeat) && first_ok &&
+                       (repeat < opt_.repeat || (fastest < 0.25 && timed < 0.5));
+       ++repeat) {
+    io.run_id = ++run_counter_;
+    const auto t1 = Clock::now();
+    const cosim::InprocRunResult again = cosim::run_inproc(scene, io);
+    const double wall = seconds_since(t1);
+    timed += wall;
+    if (again.ok) fastest = std::min(fastest, wall);
+  }
+  return fastest;
+}
+
+// The node solvers' statistics of a run, summed over the nodes.
+json solver_totals(const cosim::InprocRunResult& ir) {
+  long steps = 0, rhs = 0, etf = 0, nlf = 0, roots = 0;
+  for (const auto& n : ir.nodes) {
+    steps += n.last.solver_steps;
+    rhs += n.last.rhs_evals;
+    etf += n.last.error_test_failures;
+    nlf += n.last.nonlinear_failures;
+    roots += n.last.roots_found;
+  }
+  return {{"steps", steps}, {"rhs_evals", rhs}, {"error_test_failures", etf}, {"nonlinear_failures", nlf},
+          {"roots_found", roots}};
+}
+
+// The macro steps an adaptive run took: the rows of a node's log after the first.
+void Bench::steps_taken(const std::string& run_dir, RunResult& res) const {
+  try {
+    const cosim::OutputLog log = cosim::read_output_log(run_dir + "/" + participants_.front() + ".outputs.bin");
+    const auto& t = log.data.at(0);
+    res.macro_steps = t.empty() ? 0 : static_cast<long>(t.size()) - 1;
+    for (std::size_t k = 1; k < t.size(); ++k) {
+      const double h = t[k] - t[k - 1];
+      res.step_min_s = k == 1 ? h : std::min(res.step_min_s, h);
+      res.step_max_s = k == 1 ? h : std::max(res.step_max_s, h);
+    }
+  } catch (const std::exception&) {
+    res.macro_steps = 0;
+  }
+}
+
 RunResult Bench::run_inproc_point(const RunSpec& r, const std::string& run_dir) {
   RunResult res;
   res.run_dir = run_dir;
@@ -226,47 +276,9 @@ RunResult Bench::run_inproc_point(const RunSpec& r, const std::string& run_dir) 
     res.reason = e.what();
     return res;
   }
-  res.wall_time_s = seconds_since(t0);
-  // Short runs are timed again (the outputs are the same bit for bit) and the fastest is
-  // kept: thread start and scheduling noise are a large part of a 50 ms run. Up to ten
-  // runs, until half a second has gone by; and every run at least --repeat times (runs of
-  // a second scatter by some 20 % on a shared machine).
-  double timed = res.wall_time_s;
-  for (int repeat = 1; repeat < std::max(10, opt_.repeat) && ir.ok &&
-                       (repeat < opt_.repeat || (res.wall_time_s < 0.25 && timed < 0.5));
-       ++repeat) {
-    io.run_id = ++run_counter_;
-    const auto t1 = Clock::now();
-    const cosim::InprocRunResult again = cosim::run_inproc(*scene, io);
-    const double wall = seconds_since(t1);
-    timed += wall;
-    if (again.ok) res.wall_time_s = std::min(res.wall_time_s, wall);
-  }
-  long steps = 0, rhs = 0, etf = 0, nlf = 0, roots = 0;
-  for (const auto& n : ir.nodes) {
-    steps += n.last.solver_steps;
-    rhs += n.last.rhs_evals;
-    etf += n.last.error_test_failures;
-    nlf += n.last.nonlinear_failures;
-    roots += n.last.roots_found;
-  }
-  res.solver = {{"steps", steps}, {"rhs_evals", rhs}, {"error_test_failures", etf}, {"nonlinear_failures", nlf},
-                {"roots_found", roots}};
-  if (r.adaptive()) {
-    // The macro steps it took: the rows of a node's log after the first.
-    try {
-      const cosim::OutputLog log = cosim::read_output_log(run_dir + "/" + participants_.front() + ".outputs.bin");
-      const auto& t = log.data.at(0);
-      res.macro_steps = t.empty() ? 0 : static_cast<long>(t.size()) - 1;
-      for (std::size_t k = 1; k < t.size(); ++k) {
-        const double h = t[k] - t[k - 1];
-        res.step_min_s = k == 1 ? h : std::min(res.step_min_s, h);
-        res.step_max_s = k == 1 ? h : std::max(res.step_max_s, h);
-      }
-    } catch (const std::exception&) {
-      res.macro_steps = 0;
-    }
-  }
+  res.wall_time_s = fastest_of_repeats(*scene, io, ir.ok, seconds_since(t0));
+  res.solver = solver_totals(ir);
+  if (r.adaptive()) steps_taken(run_dir, res);
   if (!ir.ok) {
     res.status = ir.diverged ? "diverged" : "failed";
     res.reason = ir.reason;

@@ -25,11 +25,15 @@
 #include "bench_text.h"
 #include "mechsim/config/scene.h"
 #include "mechsim/cosim/composer.h"
+#include "mechsim/cosim/inproc_run.h"
+#include "plot.h"
 
 namespace mechsim::bench {
 
 using nlohmann::json;
 using Clock = std::chrono::steady_clock;
+// Named curves of (x, y) points, for the plots.
+using Curves = std::map<std::string, std::vector<std::pair<double, double>>>;
 
 struct RunSpec {
   int variant = 0;
@@ -114,11 +118,18 @@ class Bench {
   Reference& reference(int variant, double h);
   void adaptive_reference(const RunSpec& r, const std::string& run_dir, Reference& ref);
   RunResult run_inproc_point(const RunSpec& r, const std::string& run_dir);
+  double fastest_of_repeats(const config::Scene& scene, cosim::InprocRunOptions io, bool first_ok, double first_wall);
+  void steps_taken(const std::string& run_dir, RunResult& res) const;
   void compare(const config::Scene& scene, const Reference& ref, const std::vector<std::string>& participants,
                const std::function<std::string(const std::string&)>& log_path, RunResult& res);
   json dds_check(const RunSpec& r, const RunResult& inproc);
   json row_json(const RunSpec& r, const RunResult& res) const;
-  void plots(const std::vector<RunSpec>& specs, const std::vector<RunResult>& results, const json& orders);
+  void plots(const json& orders);
+  Curves sweep_curves(const std::string& sweep, bool by_h) const;
+  Curves adaptive_curves(bool max_error) const;
+  plot::Panel max_error_panel() const;
+  plot::Figure work_precision_figure() const;
+  plot::Figure error_vs_step_figure(const json& orders) const;
   std::string scheme_name(const RunSpec& r) const {
     return r.adaptive() ? "adaptive " + variants_[r.variant].name : variants_[r.variant].name;
   }
@@ -160,5 +171,8 @@ class Bench {
   std::vector<double> tolerances_;      // of the adaptive points
   json adaptive_choice_ = json::array();  // the variants with adaptive points, and why
 };
+
+// The node solvers' statistics of an in-process run, summed over the nodes.
+json solver_totals(const cosim::InprocRunResult& ir);
 
 }  // namespace mechsim::bench
