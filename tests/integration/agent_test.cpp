@@ -34,7 +34,7 @@ TEST(Agent, RefusesAnythingButAMechsimNodeOfItsDomain) {
                             (dir / "agent.log").string());
   {
     auto participant = transport::create_participant(config::default_dds_vendor(), domain.domain_id());
-    launch::AgentClient client(*participant, 42, (dir / "run").string());
+    hostrun::AgentClient client(*participant, 42, (dir / "run").string());
     fs::create_directories(dir / "run");
     ASSERT_TRUE(client.wait_for_agents({"127.0.0.1"}, 20, [] { return false; }).empty()) << slurp((dir / "agent.log").string());
     const json good{{"type", "follower"}, {"scene_yaml", ""}, {"run_folder", "r"}, {"domain", domain.domain_id()},

@@ -21,7 +21,7 @@
 #include <utility>
 #include <vector>
 
-#include <yaml-cpp/yaml.h>
+#include "scheme_variants.h"
 
 namespace mechsim::bench {
 
@@ -45,22 +45,6 @@ struct BenchOptions {
   std::string work_dir;                 // scratch; "" = a fresh directory under /tmp
   bool keep_work_dir = false;
 };
-
-// One coupling-scheme variant of a scene: a name ("jacobi/hold", "interface_jacobian/10")
-// and the scene document with its connections rewritten.
-struct SchemeVariant {
-  std::string name;
-  std::string family;     // the curve family: "jacobi", "gauss_seidel", "compliant", "interface_jacobian"
-  bool zero_order_hold_jacobi = false;  // the baseline of the 10x target
-  bool shipped = false;   // the connections as the scene ships them
-  // The scene's orders with every Jacobi edge quadratic ("shipped/quadratic", or the variant
-  // with those connections): the adaptive step also runs with it.
-  bool shipped_quadratic = false;
-  YAML::Node document;
-};
-
-// The variants valid for the scene's connections (not yet checked by the scene validator).
-std::vector<SchemeVariant> scheme_variants(const YAML::Node& scene_document);
 
 // Slope of log(error) against log(H), least squares. Points with a non-positive or
 // non-finite error are skipped; NaN with fewer than 3 points.

@@ -38,6 +38,7 @@
 
 #include "json_io.h"
 #include "plot.h"
+#include "scene_snapshot.h"
 #include "stable_step.h"
 #include "mechsim/config/scene.h"
 #include "mechsim/cosim/divergence_guard.h"
@@ -253,6 +254,99 @@ struct Row {
   int runs = 0;
 };
 
+// The largest stable H of one scheme on one cut: from the scene's step, doubled or halved
+// (up to `span` each way) to a bracket, then bisected to `resolution`. Throws
+// config::ConfigError for a variant the scene refuses.
+void bisect_limit(const std::string& run_scene, const config::Scene& base, const Cut& cut,
+                  const std::vector<std::string>& overrides, double span, double resolution, Row& row, std::ostream& out) {
+  const double h0 = base.time.step;
+  auto trial = [&](double h) {
+    ++row.runs;
+    launch::StepTrial t = try_step(run_scene, base, cut, overrides, h);
+    out << format_us(h) << (t.stable ? " ok  " : " x  ") << std::flush;
+    if (!t.stable && (!row.unstable_h || h < *row.unstable_h)) row.why = t.why;
+    return t.stable;
+  };
+  double h = h0;
+  if (trial(h)) {
+    row.stable_h = h;
+    while (!row.unstable_h && h < h0 * span) {
+      h *= 2;
+      if (trial(h)) row.stable_h = h;
+      else row.unstable_h = h;
+    }
+  } else {
+    row.unstable_h = h;
+    while (!row.stable_h && h > h0 / span) {
+      h /= 2;
+      if (trial(h)) row.stable_h = h;
+      else row.unstable_h = h;
+    }
+  }
+  while (row.stable_h && row.unstable_h && *row.unstable_h / *row.stable_h > resolution) {
+    const double mid = std::sqrt(*row.stable_h * *row.unstable_h);
+    if (trial(mid)) row.stable_h = mid;
+    else row.unstable_h = mid;
+  }
+}
+
+void print_table(const std::vector<Row>& rows, std::ostream& out) {
+  auto h_text = [](const std::optional<double>& h, const char* none) { return h ? format_us(*h) : std::string(none); };
+  out << "\n| cut | scheme | stable at | unstable at | rho = 1 at (linear map) | runs |\n|---|---|---|---|---|---|\n";
+  for (const Row& r : rows) {
+    std::string lin;
+    if (!r.spectral.linear) lin = r.spectral.note.empty() ? "-" : r.spectral.note;
+    else lin = r.spectral.crossing ? format_us(*r.spectral.crossing) : "> " + format_us(r.spectral.rho.back().first);
+    out << "| " << r.cut << " | " << r.scheme << " | " << h_text(r.stable_h, "none found") << " | "
+        << h_text(r.unstable_h, "none found") << " | " << lin << " | " << r.runs << " |\n";
+  }
+  for (const Row& r : rows)
+    if (r.unstable_h) out << "  " << r.scheme << " at " << format_us(*r.unstable_h) << ": " << r.why << "\n";
+}
+
+// rho(H) per row, log-log, with the bisected limits as points on rho = 1.
+void write_plot(const std::vector<Row>& rows, const std::string& scene_name, const std::string& plots_dir, std::ostream& out) {
+  // Near 1 everywhere (the loop's slow poles give rho = 1 - O(H)): a narrow linear range
+  // shows the crossing.
+  plot::Panel panel{.title = "spectral radius of the macro-step map (points: bisected stable / unstable H)",
+                    .xlabel = "macro step H [s]", .ylabel = "rho(H)", .logx = true, .yrange = std::pair{0.999, 1.005}};
+  panel.hlines.push_back({1.0, "rho = 1"});
+  for (const Row& r : rows) {
+    if (!r.spectral.linear || r.spectral.rho.empty()) continue;
+    plot::Series curve{.label = r.cut.substr(0, r.cut.find(" (")) + ", " + r.scheme, .style = "linespoints"};
+    for (const auto& [h, rho] : r.spectral.rho) {
+      curve.x.push_back(h);
+      curve.y.push_back(rho);
+    }
+    panel.series.push_back(curve);
+    if (r.stable_h && r.unstable_h)
+      panel.series.push_back({.label = "bisected: " + r.scheme, .x = {*r.stable_h, *r.unstable_h}, .y = {1.0, 1.0}, .style = "points"});
+  }
+  std::string why;
+  const std::string png = plots_dir + "/" + scene_name + "_stability.png";
+  if (panel.series.empty()) out << "no stability plot: no row with a linear analysis\n";
+  else if (std::filesystem::create_directories(plots_dir), !plot::write_png({.title = "Stability of " + scene_name, .panels = {panel}}, png, &why))
+    out << "no stability plot: " << why << "\n";
+  else out << "plot: " << png << "\n";
+}
+
+json rows_json(const std::vector<Row>& rows) {
+  json jr = json::array();
+  for (const Row& r : rows) {
+    json j = {{"cut", r.cut}, {"scheme", r.scheme}, {"runs", r.runs}, {"why_unstable", r.why}};
+    j["stable_h_s"] = r.stable_h ? json(*r.stable_h) : json(nullptr);
+    j["unstable_h_s"] = r.unstable_h ? json(*r.unstable_h) : json(nullptr);
+    json lin = {{"linear", r.spectral.linear}, {"note", r.spectral.note}};
+    lin["rho_crossing_h_s"] = r.spectral.crossing ? json(*r.spectral.crossing) : json(nullptr);
+    json curve = json::array();
+    for (const auto& [h, rho] : r.spectral.rho) curve.push_back({{"h_s", h}, {"rho", rho}});
+    lin["rho"] = curve;
+    j["linear_analysis"] = lin;
+    jr.push_back(j);
+  }
+  return jr;
+}
+
 }  // namespace
 
 int run_stability_bench(const std::string& scene_path, const StabilityOptions& options, std::ostream& out) {
@@ -264,10 +358,21 @@ int run_stability_bench(const std::string& scene_path, const StabilityOptions& o
     out << "mechsim bench --stability: " << e.what() << "\n";
     return 2;
   }
+  // Every run loads this copy, never the user's file again (scene_snapshot.h).
+  std::unique_ptr<SceneSnapshot> snapshot;
+  try {
+    snapshot = std::make_unique<SceneSnapshot>(*base);
+  } catch (const std::exception& e) {
+    out << "mechsim bench --stability: " << e.what() << "\n";
+    return 1;
+  }
+  const std::string& run_scene = snapshot->path();
   const std::vector<Cut> cuts = find_cuts(*base);
   const double h0 = base->time.step;
   // Bracket: up to 64x (quick: 16x) the scene's step each way; bisection to 5 % (quick 15 %).
   const double span = options.quick ? 16.0 : 64.0, resolution = options.quick ? 1.15 : 1.05;
+  const bool any_interface_jacobian =
+      std::any_of(cuts.begin(), cuts.end(), [](const Cut& c) { return c.interface_jacobian; });
   std::vector<Row> rows;
   out << "Stability of scene '" << base->name << "' (runs of " << base->time.end - base->time.start << " s or "
       << kMinSteps << " steps, whichever is longer; scene step " << format_us(h0) << "): bisection on H over in-process runs\n";
@@ -279,42 +384,13 @@ int run_stability_bench(const std::string& scene_path, const StabilityOptions& o
       overrides.insert(overrides.end(), v.overrides.begin(), v.overrides.end());
       Row row{cut.label(), v.scheme, {}, {}, "", {}, 0};
       out << "  " << row.cut << ", " << row.scheme << ": " << std::flush;
-      auto trial = [&](double h) {
-        ++row.runs;
-        launch::StepTrial t = try_step(scene_path, *base, cut, overrides, h);
-        out << format_us(h) << (t.stable ? " ok  " : " x  ") << std::flush;
-        if (!t.stable && (!row.unstable_h || h < *row.unstable_h)) row.why = t.why;
-        return t.stable;
-      };
       try {
-        double h = h0;
-        if (trial(h)) {
-          row.stable_h = h;
-          while (!row.unstable_h && h < h0 * span) {
-            h *= 2;
-            if (trial(h)) row.stable_h = h;
-            else row.unstable_h = h;
-          }
-        } else {
-          row.unstable_h = h;
-          while (!row.stable_h && h > h0 / span) {
-            h /= 2;
-            if (trial(h)) row.stable_h = h;
-            else row.unstable_h = h;
-          }
-        }
-        while (row.stable_h && row.unstable_h && *row.unstable_h / *row.stable_h > resolution) {
-          const double mid = std::sqrt(*row.stable_h * *row.unstable_h);
-          if (trial(mid)) row.stable_h = mid;
-          else row.unstable_h = mid;
-        }
+        bisect_limit(run_scene, *base, cut, overrides, span, resolution, row, out);
       } catch (const config::ConfigError& e) {
         out << "\nmechsim bench --stability: " << e.what() << "\n";
         return 2;
       }
       out << "\n";
-      const bool any_interface_jacobian =
-          std::any_of(cuts.begin(), cuts.end(), [](const Cut& c) { return c.interface_jacobian; });
       if (any_interface_jacobian) {
         // Not trusted: on nc_slide_loop_1ms the map built this way gave rho = 0 below 0.7 ms
         // and 1e200 above, while runs at 1-16 ms stay bounded (docs/stability.md). The
@@ -327,51 +403,14 @@ int run_stability_bench(const std::string& scene_path, const StabilityOptions& o
         // its linear range (a bracket far above it would start in saturation).
         const double lo = std::min(h0, row.stable_h ? *row.stable_h : h0 / span) / 4;
         const double hi = (row.unstable_h ? *row.unstable_h : h0 * span) * 4;
-        row.spectral = spectral(scene_path, *base, overrides, lo, hi);
+        row.spectral = spectral(run_scene, *base, overrides, lo, hi);
       }
       rows.push_back(row);
     }
   }
 
-  // Table.
-  auto h_text = [](const std::optional<double>& h, const char* none) { return h ? format_us(*h) : std::string(none); };
-  out << "\n| cut | scheme | stable at | unstable at | rho = 1 at (linear map) | runs |\n|---|---|---|---|---|---|\n";
-  for (const Row& r : rows) {
-    std::string lin;
-    if (!r.spectral.linear) lin = r.spectral.note.empty() ? "-" : r.spectral.note;
-    else lin = r.spectral.crossing ? format_us(*r.spectral.crossing) : "> " + format_us(r.spectral.rho.back().first);
-    out << "| " << r.cut << " | " << r.scheme << " | " << h_text(r.stable_h, "none found") << " | "
-        << h_text(r.unstable_h, "none found") << " | " << lin << " | " << r.runs << " |\n";
-  }
-  for (const Row& r : rows)
-    if (r.unstable_h) out << "  " << r.scheme << " at " << format_us(*r.unstable_h) << ": " << r.why << "\n";
-
-  // rho(H) per row, log-log, with the bisected limits as points on rho = 1.
-  if (!options.plots_dir.empty()) {
-    // Near 1 everywhere (the loop's slow poles give rho = 1 - O(H)): a narrow linear range
-    // shows the crossing.
-    plot::Panel panel{.title = "spectral radius of the macro-step map (points: bisected stable / unstable H)",
-                      .xlabel = "macro step H [s]", .ylabel = "rho(H)", .logx = true, .yrange = std::pair{0.999, 1.005}};
-    panel.hlines.push_back({1.0, "rho = 1"});
-    for (const Row& r : rows) {
-      if (!r.spectral.linear || r.spectral.rho.empty()) continue;
-      plot::Series curve{.label = r.cut.substr(0, r.cut.find(" (")) + ", " + r.scheme, .style = "linespoints"};
-      for (const auto& [h, rho] : r.spectral.rho) {
-        curve.x.push_back(h);
-        curve.y.push_back(rho);
-      }
-      panel.series.push_back(curve);
-      if (r.stable_h && r.unstable_h)
-        panel.series.push_back({.label = "bisected: " + r.scheme, .x = {*r.stable_h, *r.unstable_h}, .y = {1.0, 1.0}, .style = "points"});
-    }
-    std::string why;
-    const std::string png = options.plots_dir + "/" + base->name + "_stability.png";
-    if (panel.series.empty()) out << "no stability plot: no row with a linear analysis\n";
-    else if (std::filesystem::create_directories(options.plots_dir), !plot::write_png({.title = "Stability of " + base->name, .panels = {panel}}, png, &why))
-      out << "no stability plot: " << why << "\n";
-    else out << "plot: " << png << "\n";
-  }
-
+  print_table(rows, out);
+  if (!options.plots_dir.empty()) write_plot(rows, base->name, options.plots_dir, out);
   if (!options.json_path.empty()) {
     json doc;
     doc["schema_version"] = tools::schema_version;
@@ -382,20 +421,7 @@ int run_stability_bench(const std::string& scene_path, const StabilityOptions& o
     doc["run_time_s"] = base->time.end - base->time.start;
     doc["min_steps_per_run"] = kMinSteps;
     doc["overrides"] = options.set_overrides;
-    json jr = json::array();
-    for (const Row& r : rows) {
-      json j = {{"cut", r.cut}, {"scheme", r.scheme}, {"runs", r.runs}, {"why_unstable", r.why}};
-      j["stable_h_s"] = r.stable_h ? json(*r.stable_h) : json(nullptr);
-      j["unstable_h_s"] = r.unstable_h ? json(*r.unstable_h) : json(nullptr);
-      json lin = {{"linear", r.spectral.linear}, {"note", r.spectral.note}};
-      lin["rho_crossing_h_s"] = r.spectral.crossing ? json(*r.spectral.crossing) : json(nullptr);
-      json curve = json::array();
-      for (const auto& [h, rho] : r.spectral.rho) curve.push_back({{"h_s", h}, {"rho", rho}});
-      lin["rho"] = curve;
-      j["linear_analysis"] = lin;
-      jr.push_back(j);
-    }
-    doc["rows"] = jr;
+    doc["rows"] = rows_json(rows);
     try {
       tools::write_json_file(options.json_path, doc);
     } catch (const std::exception& e) {

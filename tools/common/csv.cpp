@@ -3,7 +3,7 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include "file_io.h"
+#include "atomic_file.h"
 
 namespace mechsim::tools {
 namespace {

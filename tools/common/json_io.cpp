@@ -1,6 +1,6 @@
 #include "json_io.h"
 
-#include "file_io.h"
+#include "atomic_file.h"
 
 namespace mechsim::tools {
 

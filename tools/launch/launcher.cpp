@@ -33,7 +33,7 @@
 #include "replay_input.h"
 #include "run_recording.h"
 #include "run_security.h"
-#include "paths.h"
+#include "install_paths.h"
 #include "run_report.h"
 #include "signal_compare.h"
 #include "solver_health.h"
@@ -48,6 +48,8 @@
 
 namespace mechsim::launch {
 
+// Node processes, agents, hosts and install paths: the layer below launch (tools/hostrun).
+using namespace hostrun;
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 using nlohmann::json;

@@ -74,7 +74,7 @@ void configure_security_environment(const config::Scene& scene) {
     ::unsetenv(transport::kSecurityProtectionEnv);
     return;
   }
-  set_environment(transport::security_environment({scene.security_dir, kLauncherIdentity, scene.security_protection}));
+  hostrun::set_environment(transport::security_environment({scene.security_dir, kLauncherIdentity, scene.security_protection}));
 }
 
 std::vector<std::string> node_security_environment(const config::Scene& scene, const std::string& node) {

@@ -1,7 +1,7 @@
-// `mechsim agent`: the per-host daemon of multi-host runs (tools/agent/agent.h, docs/hosts.md).
+// `mechsim agent`: the per-host daemon of multi-host runs (tools/agent/agent_daemon.h, docs/hosts.md).
 #include <memory>
 
-#include "agent.h"
+#include "agent_daemon.h"
 #include "commands.h"
 #include "mechsim/transport/backends.h"
 

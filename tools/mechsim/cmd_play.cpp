@@ -7,7 +7,7 @@
 #include <limits>
 
 #include "commands.h"
-#include "paths.h"
+#include "install_paths.h"
 #include "player.h"
 
 namespace mechsim::tools {
@@ -52,7 +52,7 @@ int play(const PlayArgs& a) {
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
   try {
-    launch::configure_dds_environment();
+    hostrun::configure_dds_environment();
     const recorder::PlayReport r = recorder::play(a.domain, o);
     if (tty) std::fprintf(stderr, "\n");
     std::printf("played %s on domain %d: %llu samples in %.2f s (%d pass%s%s)\n", a.file.c_str(), a.domain,

@@ -14,7 +14,7 @@
 #include "json_io.h"
 #include "mechsim/record/mcap_recover.h"
 #include "mechsim/record/mcap_types.h"
-#include "paths.h"
+#include "install_paths.h"
 #include "provenance.h"
 #include "recorder.h"
 
@@ -114,7 +114,7 @@ int record(const RecordArgs& a) {
   std::unique_ptr<recorder::Recorder> rec;
   try {
     o.compression = recorder::parse_compression(a.compression);
-    launch::configure_dds_environment();
+    hostrun::configure_dds_environment();
     std::signal(SIGINT, on_signal);
     std::signal(SIGTERM, on_signal);
     rec = recorder::start_recording(a.domain, o);

@@ -14,7 +14,7 @@
 #include "cdr_decoder.h"
 #include "commands.h"
 #include "mechsim/transport/raw.h"
-#include "paths.h"
+#include "install_paths.h"
 
 namespace mechsim::tools {
 
@@ -33,7 +33,7 @@ bool valid_domain(int domain, const char* cmd) {
 }
 
 std::unique_ptr<transport::RawParticipant> join(int domain) {
-  launch::configure_dds_environment();
+  hostrun::configure_dds_environment();
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
   return transport::create_raw_participant("cyclone", domain);

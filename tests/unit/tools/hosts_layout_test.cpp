@@ -1,4 +1,4 @@
-// Where participants run (tools/launch/hosts.h) and the generated unicast DDS
+// Where participants run (tools/hostrun/hosts.h) and the generated unicast DDS
 // configurations (transport/network_config.h) of multi-host runs (docs/hosts.md).
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include "hosts.h"
 #include "mechsim/transport/network_config.h"
 
-namespace mechsim::launch {
+namespace mechsim::hostrun {
 namespace {
 
 namespace fs = std::filesystem;
@@ -86,4 +86,4 @@ TEST(NetworkConfig, PortsToOpenFollowTheRtpsWellKnownPorts) {
 }
 
 }  // namespace
-}  // namespace mechsim::launch
+}  // namespace mechsim::hostrun

@@ -10,7 +10,9 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -121,6 +123,61 @@ TEST(Stability, CoulombFrictionLeavesTheLimitOfTheCut) {
   const double h = r["stable_h_s"], h_plain = row(plain, "compliant, linear")["stable_h_s"];
   EXPECT_LT(std::abs(std::log(h / h_plain)), std::log(1.15));
   expect_consistent(r);
+}
+
+// The output stream of the bench below: on the first result of a run ("25us ok", "50us x")
+// it calls `on_first_run` once, while the bench is between its runs.
+class FirstRunHook : public std::stringbuf {
+ public:
+  explicit FirstRunHook(std::function<void()> on_first_run) : on_first_run_(std::move(on_first_run)) {}
+
+ protected:
+  int sync() override {
+    const std::string text = str();
+    if (on_first_run_ && (text.find("us ok") != std::string::npos || text.find("us x") != std::string::npos)) {
+      on_first_run_();
+      on_first_run_ = nullptr;
+    }
+    return 0;
+  }
+
+ private:
+  std::function<void()> on_first_run_;
+};
+
+// A scene file saved anew while the bench runs (an editor writes it from the start) does not
+// reach the bench's runs: they load the scene as the bench read it. Before, every run
+// re-read the user's file, and a run that came mid-save said "'connections' is not a list"
+// (the linear analysis of one nc_slide_loop row, docs/stability.md). Here the file is left
+// half-written after the first run (deterministically, from the bench's own progress output).
+TEST(Stability, ASceneFileRewrittenDuringTheBenchDoesNotReachItsRuns) {
+  const auto dir = std::filesystem::temp_directory_path() / ("mechsim_stability_rewrite_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string copy = (dir / "nc_slide_loop.yaml").string();
+  std::filesystem::copy_file(scene("nc_slide_loop.yaml"), copy, std::filesystem::copy_options::overwrite_existing);
+  std::string text;
+  {
+    std::ifstream in(copy);
+    text.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  const std::size_t cut = text.find("\nconnections:");
+  ASSERT_NE(cut, std::string::npos);
+  FirstRunHook hook([&] { std::ofstream(copy, std::ios::trunc) << text.substr(0, cut); });
+  std::ostream out(&hook);
+  mechsim::bench::StabilityOptions o;
+  o.json_path = (dir / "stability.json").string();
+  o.quick = true;
+  const int code = mechsim::bench::run_stability_bench(copy, o, out);
+  std::cout << hook.str();
+  ASSERT_EQ(code, 0) << "a run loaded the half-written file";
+  std::ifstream in(o.json_path);
+  const json rows = json::parse(in)["rows"];
+  ASSERT_FALSE(rows.empty());
+  for (const auto& r : rows) {
+    EXPECT_TRUE(r["linear_analysis"]["linear"].get<bool>()) << r["scheme"] << ": " << r["linear_analysis"]["note"];
+    EXPECT_FALSE(r["stable_h_s"].is_null()) << r["scheme"];
+  }
+  std::filesystem::remove_all(dir);
 }
 
 TEST(Stability, BadSceneIsRefusedWithExitCode2) {

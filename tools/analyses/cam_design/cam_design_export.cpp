@@ -6,7 +6,7 @@
 #include <numbers>
 
 #include "csv.h"
-#include "file_io.h"
+#include "atomic_file.h"
 
 namespace mechsim::tools::cam_design {
 

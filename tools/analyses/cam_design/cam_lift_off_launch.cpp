@@ -9,7 +9,7 @@
 #include <thread>
 
 #include "node_processes.h"
-#include "paths.h"
+#include "install_paths.h"
 
 namespace mechsim::tools::cam_design {
 
@@ -48,20 +48,20 @@ LiftOffRun launch_lift_off_run(const config::Scene& scene, const RollerCase& rol
       args.push_back(o);
     }
   const std::string exe = options.mechsim_executable.empty()
-                              ? (fs::path(launch::executable_dir()) / "mechsim").string()
+                              ? (fs::path(hostrun::executable_dir()) / "mechsim").string()
                               : options.mechsim_executable;
 
   const auto started = std::chrono::steady_clock::now();
   // The launcher watches its nodes (hangs, deaths) and always ends; this process only waits.
   // A child dies with this process (NodeProcesses sets PR_SET_PDEATHSIG), its nodes with it.
-  launch::NodeProcesses child;
+  hostrun::NodeProcesses child;
   child.start("launch", exe, args, log);
   while (!child.all_exited()) {
     child.poll();
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  const launch::NodeProcess& p = child.processes().front();
+  const hostrun::NodeProcess& p = child.processes().front();
   char speed[64];
   std::snprintf(speed, sizeof speed, "%.2f rpm", speed_rad_s * 60.0 / (2.0 * std::numbers::pi));
   if (p.signalled || p.exit_code != 0)

@@ -65,7 +65,7 @@ struct StatusMessage {
 };
 
 // A message between a launcher and a host's `mechsim agent` (idl/agent.idl); `kind` and the
-// meaning of the fields belong to the agent protocol (tools/agent/agent_protocol.h).
+// meaning of the fields belong to the agent protocol (tools/hostrun/agent_protocol.h).
 struct AgentMessage {
   std::uint64_t run_id = 0;
   std::uint64_t sequence = 0;

@@ -3,7 +3,7 @@
 // finds the others by unicast to every host's address (initial peers), with multicast off,
 // since many plant networks block it. Single-host runs keep the loopback files of
 // config/dds/. Pure text generation: the launcher writes these files for its own host and
-// an agent for the node processes it starts (tools/launch/hosts.h, tools/agent/).
+// an agent for the node processes it starts (tools/hostrun/hosts.h, tools/agent/).
 #pragma once
 
 #include <string>

@@ -15,7 +15,7 @@
 #include <stdexcept>
 #include <thread>
 
-namespace mechsim::launch {
+namespace mechsim::hostrun {
 
 std::string NodeProcess::describe_exit() const {
   if (!exited) return "running";
@@ -172,4 +172,4 @@ NodeProcess& NodeProcesses::find(const std::string& name) {
   throw std::logic_error("no node process named '" + name + "'");
 }
 
-}  // namespace mechsim::launch
+}  // namespace mechsim::hostrun

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-namespace mechsim::launch {
+namespace mechsim::hostrun {
 
 class AgentClient;
 
@@ -55,4 +55,4 @@ class NodeProcesses {
   AgentClient* agents_ = nullptr;
 };
 
-}  // namespace mechsim::launch
+}  // namespace mechsim::hostrun

@@ -1,4 +1,4 @@
-#include "paths.h"
+#include "install_paths.h"
 
 #include <unistd.h>
 
@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <stdexcept>
 
-namespace mechsim::launch {
+namespace mechsim::hostrun {
 
 namespace fs = std::filesystem;
 
@@ -49,4 +49,4 @@ void configure_dds_environment() {
   }
 }
 
-}  // namespace mechsim::launch
+}  // namespace mechsim::hostrun

@@ -5,7 +5,7 @@
 
 #include <string>
 
-namespace mechsim::launch {
+namespace mechsim::hostrun {
 
 std::string executable_dir();
 std::string node_executable(const std::string& node_type);
@@ -15,4 +15,4 @@ std::string project_dir();
 // unless the user set them. Children inherit both.
 void configure_dds_environment();
 
-}  // namespace mechsim::launch
+}  // namespace mechsim::hostrun

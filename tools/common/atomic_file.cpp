@@ -1,4 +1,4 @@
-#include "file_io.h"
+#include "atomic_file.h"
 
 #include <unistd.h>
 

@@ -1,4 +1,4 @@
-// The launcher's side of the agent conversation (tools/agent/agent_protocol.h): finds the
+// The launcher's side of the agent conversation (tools/hostrun/agent_protocol.h): finds the
 // agents of the hosts a run needs, asks them to start nodes, keeps the run alive with
 // heartbeats, writes the logs they stream into the run folder, and at the end collects
 // the files the remote nodes wrote, so that the run folder holds what a single-host run's
@@ -16,7 +16,7 @@
 
 #include "mechsim/transport/participant.h"
 
-namespace mechsim::launch {
+namespace mechsim::hostrun {
 
 struct RemoteExit {
   std::string node;
@@ -75,4 +75,4 @@ class AgentClient {
   bool stopped_ = false;
 };
 
-}  // namespace mechsim::launch
+}  // namespace mechsim::hostrun

@@ -9,11 +9,10 @@
 #include "agent_protocol.h"
 #include "elapsed.h"
 
-namespace mechsim::launch {
+namespace mechsim::hostrun {
 
 using Clock = std::chrono::steady_clock;
 using nlohmann::json;
-using agent::AgentKind;
 
 namespace {
 
@@ -131,8 +130,8 @@ void AgentClient::handle(const transport::AgentMessage& m) {
 
 void AgentClient::pump() {
   while (auto m = replies_->take()) handle(*m);
-  if (seconds_since(last_heartbeat_) > agent::kHeartbeatPeriodS && !node_address_.empty()) {
-    send(static_cast<std::int32_t>(AgentKind::heartbeat), agent::kAllAgents, "", "");
+  if (seconds_since(last_heartbeat_) > kHeartbeatPeriodS && !node_address_.empty()) {
+    send(static_cast<std::int32_t>(AgentKind::heartbeat), kAllAgents, "", "");
     last_heartbeat_ = Clock::now();
   }
   for (auto& [node, p] : pending_)
@@ -152,7 +151,7 @@ std::vector<RemoteExit> AgentClient::take_exits() {
 void AgentClient::stop_all() {
   stopped_ = true;
   pending_.clear();
-  send(static_cast<std::int32_t>(AgentKind::stop), agent::kAllAgents, "", "");
+  send(static_cast<std::int32_t>(AgentKind::stop), kAllAgents, "", "");
 }
 
 std::vector<std::string> AgentClient::collect(double timeout_s) {
@@ -191,4 +190,4 @@ std::vector<std::string> AgentClient::collect(double timeout_s) {
   return missing;
 }
 
-}  // namespace mechsim::launch
+}  // namespace mechsim::hostrun

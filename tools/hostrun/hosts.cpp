@@ -14,7 +14,7 @@
 
 #include "mechsim/config/config_node.h"
 
-namespace mechsim::launch {
+namespace mechsim::hostrun {
 
 std::vector<std::string> local_ipv4_addresses() {
   std::vector<std::string> out;
@@ -107,4 +107,4 @@ HostLayout plan_hosts(const config::Scene& scene) {
   return layout;
 }
 
-}  // namespace mechsim::launch
+}  // namespace mechsim::hostrun

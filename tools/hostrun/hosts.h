@@ -11,7 +11,7 @@
 #include "mechsim/config/scene.h"
 #include "mechsim/transport/network_config.h"
 
-namespace mechsim::launch {
+namespace mechsim::hostrun {
 
 // This machine's IPv4 addresses (up interfaces, loopback included).
 std::vector<std::string> local_ipv4_addresses();
@@ -41,4 +41,4 @@ void set_environment(const std::vector<std::string>& entries);
 // resolve, or when participants sit on other hosts and this machine is none of the hosts.
 HostLayout plan_hosts(const config::Scene& scene);
 
-}  // namespace mechsim::launch
+}  // namespace mechsim::hostrun

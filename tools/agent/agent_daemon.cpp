@@ -1,4 +1,4 @@
-#include "agent.h"
+#include "agent_daemon.h"
 
 #include <fcntl.h>
 #include <sys/file.h>
@@ -27,12 +27,15 @@
 #include "mechsim/transport/backends.h"
 #include "mechsim/transport/network_config.h"
 #include "node_processes.h"
-#include "paths.h"
+#include "install_paths.h"
 #include "elapsed.h"
 
 namespace mechsim::agent {
 
 namespace fs = std::filesystem;
+using hostrun::AgentKind;
+using hostrun::kAllAgents;
+using hostrun::kHelloPeriodS;
 using Clock = std::chrono::steady_clock;
 using nlohmann::json;
 
@@ -62,7 +65,7 @@ void write_file(const fs::path& path, const std::string& text) {
 struct AgentRun {
   std::uint64_t run_id = 0;
   fs::path folder;
-  launch::NodeProcesses processes;
+  hostrun::NodeProcesses processes;
   std::map<std::string, std::uint64_t> log_sent;  // node -> bytes of its log already sent
   std::set<std::string> exit_reported;
   Clock::time_point last_heartbeat = Clock::now();
@@ -160,7 +163,7 @@ void Agent::start_node(const transport::AgentMessage& m) {
                   std::to_string(opt_.domain));
   std::string executable;
   try {
-    executable = launch::node_executable(type);
+    executable = hostrun::node_executable(type);
   } catch (const std::exception& e) {
     return refuse(e.what());
   }
@@ -174,7 +177,7 @@ void Agent::start_node(const transport::AgentMessage& m) {
     run.heartbeat_timeout_s = std::max(opt_.heartbeat_timeout_s, request.value("partition_grace_s", 0.0) + 1.0);
     if (network.address.empty() || addresses_.count(network.address) == 0)
       return refuse("the request names address '" + network.address + "', which is not one of this host's");
-    const std::vector<std::string> env = launch::write_unicast_dds_files((run.folder / "dds").string(), network);
+    const std::vector<std::string> env = hostrun::write_unicast_dds_files((run.folder / "dds").string(), network);
     std::vector<std::string> args{"--scene", (run.folder / "scene.yaml").string(), "--node", m.node,
                                   "--run-id", std::to_string(m.run_id), "--domain", std::to_string(opt_.domain),
                                   "--run-dir", run.folder.string()};
@@ -327,24 +330,24 @@ int Agent::run() {
   std::signal(SIGTERM, on_signal);
   std::signal(SIGPIPE, SIG_IGN);
   lock_work_dir();
-  const auto local = launch::local_ipv4_addresses();
+  const auto local = hostrun::local_ipv4_addresses();
   if (!opt_.address.empty()) {
     if (std::find(local.begin(), local.end(), opt_.address) == local.end())
       throw std::runtime_error("--address " + opt_.address + " is not an address of this host (it has: " +
-                               launch::join(local, ", ") + ")");
+                               hostrun::join(local, ", ") + ")");
     addresses_.insert(opt_.address);
     transport::UnicastNetwork network{opt_.address, opt_.peers};
     network.peers.push_back(opt_.address);
-    launch::set_environment(launch::write_unicast_dds_files((fs::path(opt_.work_dir) / "dds").string(), network));
+    hostrun::set_environment(hostrun::write_unicast_dds_files((fs::path(opt_.work_dir) / "dds").string(), network));
   } else {
     addresses_.insert("127.0.0.1");
-    launch::configure_dds_environment();
+    hostrun::configure_dds_environment();
   }
   const std::string vendor = opt_.vendor.empty() ? config::default_dds_vendor() : opt_.vendor;
   participant_ = transport::create_participant(vendor, opt_.domain);
   replies_ = participant_->create_agent_writer(transport::kAgentReplyTopic);
   requests_ = participant_->create_agent_reader(transport::kAgentRequestTopic);
-  log_line("serving domain " + std::to_string(opt_.domain) + " on " + launch::join({addresses_.begin(), addresses_.end()}, ", ") +
+  log_line("serving domain " + std::to_string(opt_.domain) + " on " + hostrun::join({addresses_.begin(), addresses_.end()}, ", ") +
            " (" + vendor + "), work folder " + opt_.work_dir + ", heartbeat timeout " + std::to_string(opt_.heartbeat_timeout_s) + " s");
   const auto started = Clock::now();
   auto last_hello = Clock::now() - std::chrono::hours(1);

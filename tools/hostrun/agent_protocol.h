@@ -24,7 +24,7 @@
 
 #include <cstdint>
 
-namespace mechsim::agent {
+namespace mechsim::hostrun {
 
 enum class AgentKind : std::int32_t {
   hello = 1,
@@ -45,4 +45,4 @@ inline constexpr double kHeartbeatPeriodS = 0.5;
 inline constexpr double kDefaultHeartbeatTimeoutS = 5.0;
 inline constexpr double kHelloPeriodS = 1.0;
 
-}  // namespace mechsim::agent
+}  // namespace mechsim::hostrun
