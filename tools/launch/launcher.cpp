@@ -62,8 +62,11 @@ class Run {
   int execute();
 
  private:
+  void open_run_folder();
+  int connect();
   void place_nodes();
   cosim::SupervisedRun run_nodes();
+  int report(cosim::SupervisedRun out);
   std::string log_of(const std::string& node) const;
   void print_progress(const cosim::NodeWatches& watches, double since_start, bool final_line);
 
@@ -73,6 +76,7 @@ class Run {
   std::uint64_t run_id_ = 0;
   std::string run_dir_;
   int domain_ = 0;
+  std::optional<DomainLock> domain_lock_;  // held until the run ends (a domain the scene does not fix)
   std::unique_ptr<transport::Participant> participant_;
   std::unique_ptr<transport::ControlWriter> control_;
   std::unique_ptr<transport::StatusReader> status_;
@@ -260,6 +264,29 @@ int Run::execute() {
     for (const auto& why : problems) std::fprintf(stderr, "mechsim launch: %s\n", why.c_str());
     return 2;
   }
+  open_run_folder();
+  if (const int refused = connect(); refused != 0) return refused;
+  std::fprintf(stderr, "mechsim: scene '%s', run %s, domain %d, %zu nodes, folder %s\n", scene_.name.c_str(),
+               hex_id(run_id_).c_str(), domain_, plan_.nodes().size(), run_dir_.c_str());
+  // Replayed participants: their recorded topic, checked and tabulated before any process
+  // starts (a recording that does not fit the scene is refused like a bad scene).
+  for (const std::string& text : opt_.replays) {
+    const ReplayRequest r = parse_replay_request(text);
+    const std::string table = run_dir_ + "/" + r.node + ".replay.bin";
+    try {
+      write_replay_table(r.file, plan_.node(r.node), *plan_.grid(), table);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "mechsim launch: --replay %s: %s\n", text.c_str(), e.what());
+      return 2;
+    }
+    replay_tables_[r.node] = table;
+  }
+  recording_ = RunRecording::start(plan_, domain_, run_dir_);
+  return report(run_nodes());
+}
+
+// The run's id and folder, with the resolved scene and a summary marked incomplete.
+void Run::open_run_folder() {
   std::random_device rd;
   run_id_ = (static_cast<std::uint64_t>(rd()) << 32) ^ rd() ^ static_cast<std::uint64_t>(::getpid());
   run_dir_ = (fs::path(opt_.runs_dir) / (scene_.name + "-" + hex_id(run_id_).substr(8))).string();
@@ -277,12 +304,17 @@ int Run::execute() {
                               {"reason", "the launcher has not finished this run: it is still running, or it was killed. The node "
                                          "logs and output logs hold what was written; `mechsim record --recover` completes a "
                                          "recording (docs/faults.md)"}});
-  std::optional<DomainLock> lock;
+}
+
+// The domain, the DDS and security environment the nodes inherit, the launcher's own
+// participant, and in a multi-host run the agents. Returns an exit code when the run
+// cannot go on (0: connected).
+int Run::connect() {
   if (scene_.domain_id) {
     domain_ = *scene_.domain_id;
   } else {
-    lock.emplace(DomainLock::acquire());
-    domain_ = lock->domain_id();
+    domain_lock_.emplace(DomainLock::acquire());
+    domain_ = domain_lock_->domain_id();
   }
   if (hosts_.multi_host) {
     // The hosts' interfaces and unicast peers for both vendors, generated from the scene,
@@ -320,24 +352,11 @@ int Run::execute() {
       return 1;
     }
   }
+  return 0;
+}
 
-  std::fprintf(stderr, "mechsim: scene '%s', run %s, domain %d, %zu nodes, folder %s\n", scene_.name.c_str(),
-               hex_id(run_id_).c_str(), domain_, plan_.nodes().size(), run_dir_.c_str());
-  // Replayed participants: their recorded topic, checked and tabulated before any process
-  // starts (a recording that does not fit the scene is refused like a bad scene).
-  for (const std::string& text : opt_.replays) {
-    const ReplayRequest r = parse_replay_request(text);
-    const std::string table = run_dir_ + "/" + r.node + ".replay.bin";
-    try {
-      write_replay_table(r.file, plan_.node(r.node), *plan_.grid(), table);
-    } catch (const std::exception& e) {
-      std::fprintf(stderr, "mechsim launch: --replay %s: %s\n", text.c_str(), e.what());
-      return 2;
-    }
-    replay_tables_[r.node] = table;
-  }
-  recording_ = RunRecording::start(plan_, domain_, run_dir_);
-  cosim::SupervisedRun out = run_nodes();
+// After the run: advice, the remote nodes' files, the summary, the comparison, the report.
+int Run::report(cosim::SupervisedRun out) {
   // Advice for a diverged run: computed here, once the run is over (it may run a search).
   if (out.diverged) out.reason += divergence_advice(scene_, run_dir_ + "/scene.yaml", out.failed_node);
   if (agents_) {

@@ -63,10 +63,10 @@ json summarise(const RunFacts& run, const cosim::SupervisedRun& out) {
   s["schema_version"] = tools::schema_version;
   s["provenance"] = tools::provenance(run.scene.file);
   s["scene"] = run.scene.name;
-  s["run.scenefile"] = run.scene.file;
+  s["scene_file"] = run.scene.file;
   s["run_id"] = hex_id(run.run_id);
   s["run_dir"] = run.run_dir;
-  s["run.domainid"] = run.domain;
+  s["domain_id"] = run.domain;
   s["dds_vendor"] = run.scene.vendor;  // the launcher's own participant
   if (!run.scene.security_dir.empty()) {
     s["dds_security"] = run.scene.security_dir;
