@@ -5,6 +5,8 @@
 // Cyclone DDS and on Fast DDS, for the whole scene in one process and for part of it.
 #include <gtest/gtest.h>
 
+#include <signal.h>
+
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -100,6 +102,39 @@ TEST_F(Placement, ADivergingNodeInAGroupEndsTheRunCleanly) {
   const json s = summary("diverged");
   EXPECT_EQ(s["status"], "failed");
   EXPECT_NE(s["failure"]["reason"].get<std::string>().find("diverged"), std::string::npos) << s["failure"].dump();
+}
+
+// A crash takes the whole group process: with restart: on_failure it is started again as a
+// whole, every member resumes from the common checkpoint, and the run ends byte-identical to
+// an undisturbed one, with a restart recorded for each member.
+TEST_F(Placement, AKilledGroupProcessRestartsAsAWholeAndEndsByteIdentical) {
+  const std::vector<std::string> members{"servo", "tacho", "slide"};
+  std::vector<std::string> grouped{"--end", "3 s"};
+  for (auto& a : group_of(members, "all")) grouped.push_back(a);
+  const json plain = launch("nc_slide_loop_1ms.yaml", "plain", grouped);
+  ASSERT_FALSE(plain.is_null());
+  const auto full = fs::file_size(run_folder("plain") / "slide.outputs.bin");
+  std::vector<std::string> args = grouped;
+  args.insert(args.end(), {"--set", "faults.restart=on_failure", "--set", "faults.checkpoint_every=50"});
+  const pid_t launcher = spawn(launch_args(scene_path("nc_slide_loop_1ms.yaml"), "killed", args), log("killed"));
+  // Past a third of the run (many checkpoints behind it, most of the run ahead), the group's
+  // process is killed.
+  ASSERT_TRUE(wait_for_output_bytes("killed", "slide", full / 3, 120, launcher)) << slurp(log("killed"));
+  pid_t group = -1;
+  for (pid_t p : processes_mentioning((dir_ / "killed").string()))
+    if (slurp("/proc/" + std::to_string(p) + "/cmdline").find("node_group") != std::string::npos) group = p;
+  ASSERT_GT(group, 0) << "no node_group process";
+  ::kill(group, SIGKILL);
+  CommandResult r = wait_for(launcher, log("killed"), 180);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const json s = summary("killed");
+  const json& restarts = s["restart"]["restarts"];
+  ASSERT_EQ(restarts.size(), members.size()) << restarts.dump(1);
+  for (const json& x : restarts) {
+    EXPECT_EQ(x["exit"], "killed by signal 9 (Killed)");
+    EXPECT_EQ(x["rollback_step"].get<long>() % 50, 0);
+  }
+  expect_identical_node_outputs(run_folder("plain"), run_folder("killed"), plain, "an undisturbed run and one with its group killed");
 }
 
 }  // namespace
