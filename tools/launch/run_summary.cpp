@@ -42,6 +42,46 @@ NodeSolverFigures solver_figures(const config::ParticipantSpec& spec, const tran
   return f;
 }
 
+// Where a node ran, how it ended, its solver statistics and health, its log.
+json node_summary(const RunFacts& run, const std::string& name) {
+  const auto& w = run.supervisor.watches().at(name);
+  const auto* spec = run.scene.find_participant(name);
+  const cosim::NodeHost& host = run.supervisor.host_of(name);
+  json n = {{"type", spec->type},
+            {"vendor", spec->vendor},
+            {"host", !host.remote(name) ? (run.hosts.launcher_host.empty() ? "local" : run.hosts.launcher_host) : spec->host},
+            {"exit", host.describe_exit(name)},
+            {"last_step", w.seen ? w.last.header.step : 0},
+            {"solver",
+             {{"steps", w.last.solver_steps},
+              {"rhs_evals", w.last.rhs_evals},
+              {"error_test_failures", w.last.error_test_failures},
+              {"nonlinear_failures", w.last.nonlinear_failures},
+              {"roots_found", w.last.roots_found},
+              {"last_step_s", w.last.last_step_size},
+              {"last_order", w.last.last_order}}},
+            {"log", run.log_of(name)}};
+  // Integrator health (solver_health.h): steps per macro step and the stiffness hint.
+  const NodeSolverFigures health = solver_figures(*spec, w.last, w.seen ? static_cast<long>(w.last.header.step) : 0, run.scene.time.step);
+  n["solver"]["method"] = health.method;
+  n["solver"]["steps_per_macro_step"] = steps_per_macro_step(health);
+  if (auto hint = stiffness_hint(health)) n["solver"]["stiffness_hint"] = *hint;
+  return n;
+}
+
+// The restarts with rollback of the run (docs/faults.md) and their timings.
+json restart_summary(const RunFacts& run) {
+  json restarts = json::array();
+  for (const auto& r : run.supervisor.restarts())
+    restarts.push_back({{"node", r.node}, {"exit", r.exit}, {"last_step", r.last_step}, {"rollback_step", r.rollback_step},
+                        {"generation", r.generation}, {"detected_s", r.detected_s}, {"resumed_s", r.resumed_s},
+                        {"stepping_s", r.stepping_s},
+                        {"kill_to_resume_s", r.resumed_s >= 0 ? r.resumed_s - r.detected_s : -1.0},
+                        {"kill_to_stepping_s", r.stepping_s >= 0 ? r.stepping_s - r.detected_s : -1.0}});
+  return {{"checkpoint_every", run.scene.faults.checkpoint_every}, {"restart_limit", run.scene.faults.restart_limit},
+          {"restarts", restarts}};
+}
+
 }  // namespace
 
 void print_solver_health(const json& nodes) {
@@ -74,17 +114,7 @@ json summarise(const RunFacts& run, const cosim::SupervisedRun& out) {
   }
   s["mode"] = run.scene.mode;
   s["redundant_samples"] = run.scene.faults.redundant();
-  if (run.scene.checkpointing()) {
-    json restarts = json::array();
-    for (const auto& r : run.supervisor.restarts())
-      restarts.push_back({{"node", r.node}, {"exit", r.exit}, {"last_step", r.last_step}, {"rollback_step", r.rollback_step},
-                          {"generation", r.generation}, {"detected_s", r.detected_s}, {"resumed_s", r.resumed_s},
-                          {"stepping_s", r.stepping_s},
-                          {"kill_to_resume_s", r.resumed_s >= 0 ? r.resumed_s - r.detected_s : -1.0},
-                          {"kill_to_stepping_s", r.stepping_s >= 0 ? r.stepping_s - r.detected_s : -1.0}});
-    s["restart"] = {{"checkpoint_every", run.scene.faults.checkpoint_every}, {"restart_limit", run.scene.faults.restart_limit},
-                    {"restarts", restarts}};
-  }
+  if (run.scene.checkpointing()) s["restart"] = restart_summary(run);
   s["status"] = out.ok ? "ok" : "failed";
   s["macro_step_s"] = run.scene.time.step;
   s["simulated_time_s"] = run.scene.time.end - run.scene.time.start;
@@ -112,31 +142,7 @@ json summarise(const RunFacts& run, const cosim::SupervisedRun& out) {
   if (!out.ok)
     s["failure"] = {{"node", out.failed_node}, {"last_step", out.failed_step}, {"reason", out.reason}};
   json nodes = json::object();
-  for (const auto& node : run.plan.nodes()) {
-    const std::string& name = node.name();
-    const auto& w = run.supervisor.watches().at(name);
-    const auto* spec = run.scene.find_participant(name);
-    const cosim::NodeHost& host = run.supervisor.host_of(name);
-    nodes[name] = {{"type", spec->type},
-                     {"vendor", spec->vendor},
-                     {"host", !host.remote(name) ? (run.hosts.launcher_host.empty() ? "local" : run.hosts.launcher_host) : spec->host},
-                     {"exit", host.describe_exit(name)},
-                     {"last_step", w.seen ? w.last.header.step : 0},
-                     {"solver",
-                      {{"steps", w.last.solver_steps},
-                       {"rhs_evals", w.last.rhs_evals},
-                       {"error_test_failures", w.last.error_test_failures},
-                       {"nonlinear_failures", w.last.nonlinear_failures},
-                       {"roots_found", w.last.roots_found},
-                       {"last_step_s", w.last.last_step_size},
-                       {"last_order", w.last.last_order}}},
-                     {"log", run.log_of(name)}};
-    // Integrator health (solver_health.h): steps per macro step and the stiffness hint.
-    const NodeSolverFigures health = solver_figures(*spec, w.last, w.seen ? static_cast<long>(w.last.header.step) : 0, run.scene.time.step);
-    nodes[name]["solver"]["method"] = health.method;
-    nodes[name]["solver"]["steps_per_macro_step"] = steps_per_macro_step(health);
-    if (auto hint = stiffness_hint(health)) nodes[name]["solver"]["stiffness_hint"] = *hint;
-  }
+  for (const auto& node : run.plan.nodes()) nodes[node.name()] = node_summary(run, node.name());
   s["nodes"] = nodes;
   if (run.hosts.multi_host) {
     json agents = json::object();
