@@ -1,4 +1,5 @@
 #include "node_main.h"
+#include "node_setup.h"
 
 #include <atomic>
 #include <csignal>
@@ -22,6 +23,37 @@ namespace {
 std::atomic<bool> g_stop{false};
 void on_signal(int) { g_stop.store(true); }
 }  // namespace
+
+std::unique_ptr<cosim::ScenePlan> node_plan(const config::Scene& scene, const std::string& node_name, const std::string& replay) {
+  auto plan = std::make_unique<cosim::ScenePlan>(cosim::ScenePlan::build(scene));
+  if (!replay.empty()) {
+    cosim::PlannedNode& node = plan->node(node_name);
+    cosim::replace_with_replay(node, cosim::recorded_topic_from_log(cosim::read_output_log(replay), *node.type->publishes, replay),
+                               plan->grid());
+  }
+  return plan;
+}
+
+void apply_realtime(const config::Scene& scene, const config::ParticipantSpec& spec, const std::string& run_dir,
+                    const std::vector<std::string>& names) {
+  // Real-time mode only (a lock-step run of FIFO nodes flat out would starve the rest of
+  // the machine), and before the DDS participant exists, so that the vendor's threads
+  // inherit the policy.
+  const bool paced = scene.mode == "realtime";
+  const cosim::AppliedRealtime applied = paced ? cosim::apply_process_realtime(spec.process_realtime) : cosim::AppliedRealtime{};
+  if (paced && spec.process_realtime.any()) {
+    std::printf("process: %s\n", applied.describe().c_str());
+    if (!run_dir.empty())
+      for (const auto& name : names) applied.write_json(run_dir + "/" + name + ".process.json");
+  }
+}
+
+void stop_on_signals() {
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+}
+
+const std::atomic<bool>& stop_signalled() { return g_stop; }
 
 int node_main(const char* node_type, int argc, char** argv) {
   // Logs go to a file in the run folder: keep them line by line so a crash loses nothing.
@@ -53,11 +85,9 @@ int node_main(const char* node_type, int argc, char** argv) {
   app.add_option("--generation", generation, "the rollback generation a resumed node belongs to")->needs(resume_option);
   CLI11_PARSE(app, argc, argv);
 
-  std::signal(SIGINT, on_signal);
-  std::signal(SIGTERM, on_signal);
+  stop_on_signals();
   try {
     config::Scene scene = config::load_scene(scene_path);
-    cosim::ScenePlan plan = cosim::ScenePlan::build(scene);
     const auto* spec = scene.find_participant(node_name);
     if (!spec) {
       std::cerr << node_type << ": no participant '" << node_name << "' in " << scene_path << "\n";
@@ -67,20 +97,8 @@ int node_main(const char* node_type, int argc, char** argv) {
       std::cerr << node_type << ": participant '" << node_name << "' is a " << spec->type << ", not a " << node_type << "\n";
       return 2;
     }
-    if (!replay.empty()) {
-      cosim::PlannedNode& node = plan.node(node_name);
-      cosim::replace_with_replay(node, cosim::recorded_topic_from_log(cosim::read_output_log(replay), *node.type->publishes, replay),
-                                 plan.grid());
-    }
-    // Real-time mode only (a lock-step run of FIFO nodes flat out would starve the rest of
-    // the machine), and before the DDS participant exists, so that the vendor's threads
-    // inherit the policy.
-    const bool paced = scene.mode == "realtime";
-    const cosim::AppliedRealtime applied = paced ? cosim::apply_process_realtime(spec->process_realtime) : cosim::AppliedRealtime{};
-    if (paced && spec->process_realtime.any()) {
-      std::printf("process: %s\n", applied.describe().c_str());
-      if (!run_dir.empty()) applied.write_json(run_dir + "/" + node_name + ".process.json");
-    }
+    std::unique_ptr<cosim::ScenePlan> plan = node_plan(scene, node_name, replay);
+    apply_realtime(scene, *spec, run_dir, {node_name});
     auto participant = transport::create_participant(spec->vendor, domain);
     cosim::NodeRunOptions options;
     options.run_dir = run_dir;
@@ -90,7 +108,7 @@ int node_main(const char* node_type, int argc, char** argv) {
     options.stop_requested = &g_stop;
     if (resume_option->count() > 0) options.resume_step = resume_step;
     options.generation = generation;
-    return cosim::run_node(plan, node_name, *participant, options);
+    return cosim::run_node(*plan, node_name, *participant, options);
   } catch (const config::ConfigError& e) {
     std::cerr << e.what() << "\n";
     return 2;

@@ -21,6 +21,19 @@ inline std::string scene_path(const std::string& name) {
   return std::string(MECHSIM_SOURCE_DIR) + "/config/scenes/" + name;
 }
 
+// The node outputs of two run folders are the same bytes, node by node, for every node of
+// `summary` (a launcher summary); `what` names the two runs in a failure.
+inline void expect_identical_node_outputs(const std::filesystem::path& a, const std::filesystem::path& b,
+                                          const nlohmann::json& summary, const std::string& what) {
+  ASSERT_FALSE(summary.is_null());
+  for (const auto& [node, info] : summary["nodes"].items()) {
+    const std::string name = node + ".outputs.bin";
+    const std::string first = slurp((a / name).string());
+    EXPECT_GT(first.size(), 1000u) << name;
+    EXPECT_TRUE(first == slurp((b / name).string())) << name << " differs between " << what;
+  }
+}
+
 class RunFolderTest : public ::testing::Test {
  protected:
   void SetUp() override {

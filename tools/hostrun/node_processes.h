@@ -47,6 +47,7 @@ class NodeProcesses {
   std::vector<NodeProcess>& processes() { return processes_; }
   // The process of node `name`; throws std::logic_error for a name that was never started.
   NodeProcess& find(const std::string& name);
+  const NodeProcess& find(const std::string& name) const { return const_cast<NodeProcesses*>(this)->find(name); }
 
  private:
   pid_t spawn(const std::string& executable, const std::vector<std::string>& args, const std::string& log_path,

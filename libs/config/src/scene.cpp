@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <regex>
 #include <sstream>
 
@@ -182,6 +183,33 @@ std::optional<RecordSpec> parse_record(const ConfigNode& r) {
 }
 
 // The process keys of a `realtime:` map over `base` (the scene's, for a participant).
+// Participants sharing a process (`process: <group>`): its threads share what belongs to a
+// process, so the members must agree on it.
+void check_process_groups(const Scene& scene, const ConfigNode& participants) {
+  std::map<std::string, const ParticipantSpec*> first;  // group -> its first member
+  for (const auto& p : scene.participants) {
+    if (p.process.empty()) continue;
+    const ConfigNode key = participants.child(p.name).child("process");
+    // The agents start one node per process.
+    if (!p.host.empty())
+      key.fail("a process group runs on the launcher's host only (participant on host '" + p.host +
+               "'); remove process: or host: (docs/scenes.md)");
+    // Each participant's identity reaches it through its process's environment.
+    if (!scene.security_dir.empty())
+      key.fail("process groups are not available with dds.security: each participant's identity is set in its own "
+               "process's environment (docs/security.md)");
+    // Scheduling, memory locking and CPUs are a process's settings.
+    if (participants.child(p.name).has("realtime"))
+      key.fail("a participant in a process group takes the scene's realtime: settings: its own realtime: would apply to the "
+               "whole process (remove one of them)");
+    auto [at, inserted] = first.emplace(p.process, &p);
+    // A crash takes the whole process: it restarts as a whole, or not at all.
+    if (!inserted && at->second->restart != p.restart)
+      key.fail("the participants of process group '" + p.process + "' restart together: '" + at->second->name + "' has restart: " +
+               (at->second->restart ? "on_failure" : "never") + ", '" + p.name + "' " + (p.restart ? "on_failure" : "never"));
+  }
+}
+
 ProcessRealtimeSpec parse_process_realtime(const ConfigNode& rt, ProcessRealtimeSpec base) {
   if (rt.has("priority")) {
     const long prio = rt.integer("priority");
@@ -313,7 +341,7 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   for (const std::string& name : participants.keys()) {
     ConfigNode p = participants.child(name);
     if (!valid_name(name)) p.fail("expected an instance name of letters, digits and '_'");
-    p.allow_only({"type", "params", "dds", "host", "solver", "realtime", "restart"});
+    p.allow_only({"type", "params", "dds", "host", "process", "solver", "realtime", "restart"});
     ParticipantSpec spec;
     spec.name = name;
     spec.type = p.string("type");
@@ -330,6 +358,10 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
       if (!scene.domain_id)
         p.child("host").fail("a participant placed on a host needs the agents' DDS domain: set dds.domain to the "
                              "--domain of the hosts' `mechsim agent` (docs/hosts.md)");
+    }
+    if (p.has("process")) {
+      spec.process = p.string("process");
+      if (!valid_name(spec.process)) p.child("process").fail("expected a process group name of letters, digits and '_', got '" + spec.process + "'");
     }
     spec.restart = (p.has("restart") ? p.choice("restart", {"never", "on_failure"}) : scene.faults.restart) == "on_failure";
     // Real-time pacing counts from the start command's wall time: a rolled-back run would
@@ -352,6 +384,8 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
     spec.key_path = p.path();
     scene.participants.push_back(std::move(spec));
   }
+
+  check_process_groups(scene, participants);
 
   // Restart with rollback runs on the launcher's host only: an agent cannot restart a node,
   // and the launcher finds the common checkpoint in its own run folder.

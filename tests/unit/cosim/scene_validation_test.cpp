@@ -187,6 +187,30 @@ TEST(SceneValidation, RestartKeys) {
   expect_refused(hosts, "participants.follower.host", "launcher's host only");
 }
 
+// Participants sharing a process (`process: <group>`, docs/scenes.md): what belongs to a
+// process must fit all of its members.
+TEST(SceneValidation, ProcessGroups) {
+  auto grouped = [](const std::string& cam_extra, const std::string& follower_extra, const std::string& scene_extra = "") {
+    std::string text = cam_press_with("mode: lockstep", "mode: lockstep" + scene_extra);
+    text.replace(text.find("    type: cam_shaft"), 19, "    type: cam_shaft\n    process: press" + cam_extra);
+    text.replace(text.find("    type: follower"), 18, "    type: follower\n    process: press" + follower_extra);
+    return text;
+  };
+  const config::Scene scene = config::load_scene(write_scene(grouped("", "")));
+  EXPECT_EQ(scene.find_participant("cam")->process, "press");
+  EXPECT_EQ(scene.find_participant("follower")->process, "press");
+  EXPECT_EQ(config::load_scene(testing::shipped_scene("cam_press.yaml")).find_participant("cam")->process, "");
+  expect_refused(grouped("", "").replace(grouped("", "").find("process: press"), 14, "process: a-b"), "participants.cam.process",
+                 "letters, digits and '_'");
+  // A crash takes the whole process: its members restart together or not at all.
+  expect_refused(grouped("", "\n    restart: on_failure"), "participants.follower.process", "restart together");
+  // Real-time settings are the process's.
+  expect_refused(grouped("", "\n    realtime: {priority: 10}"), "participants.follower.process", "whole process");
+  // The agents start one node per process.
+  expect_refused(grouped("", "\n    host: b", "\ndds: {domain: 5}\nhosts: {b: {address: 10.0.0.2}}"), "participants.follower.process",
+                 "launcher's host only");
+}
+
 }  // namespace
 }  // namespace mechsim::cosim
 

@@ -88,6 +88,9 @@ struct ParticipantSpec {
   std::string type;    // node type, e.g. "cam_shaft"
   std::string vendor;  // DDS vendor of this node
   std::string host;    // a name of Scene::hosts; "" = where the launcher runs
+  // Participants with the same process group run as threads of one process, each still its
+  // own DDS participant (docs/scenes.md, `process`); "" = a process of its own.
+  std::string process;
   SolverSpec solver;
   ProcessRealtimeSpec process_realtime;  // the scene's realtime settings with this participant's over them
   bool restart = false;  // restarted after a crash (faults.restart, or the participant's own restart:)

@@ -1,0 +1,111 @@
+#include <sys/prctl.h>
+
+#include <csignal>
+#include <cstdio>
+#include <iostream>
+#include <map>
+
+#include <CLI/CLI.hpp>
+
+#include "mechsim/cosim/thread_host.h"
+#include "mechsim/transport/backends.h"
+#include "node_main.h"
+#include "node_setup.h"
+
+namespace mechsim::nodes {
+
+int node_group_main(int argc, char** argv) {
+  // Logs go to a file in the run folder: keep them line by line so a crash loses nothing.
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
+  // Never outlive the launcher (it may be killed without a chance to stop us).
+  prctl(PR_SET_PDEATHSIG, SIGTERM);
+
+  CLI::App app{"mechsim process group: several participants of a scene as threads of one process, each its own DDS "
+               "participant (participants.<p>.process, docs/scenes.md). Normally started by `mechsim launch`."};
+  std::string scene_path, run_dir, control_writer;
+  std::vector<std::string> node_names, replays;
+  std::uint64_t run_id = 0;
+  int domain = 0;
+  app.add_option("--scene", scene_path, "scene file (the run folder's resolved scene.yaml)")->required();
+  app.add_option("--node", node_names, "a participant of the group (repeated)")->required();
+  app.add_option("--run-id", run_id, "run id the samples carry")->required();
+  app.add_option("--domain", domain, "DDS domain id")->required()->check(CLI::Range(0, 232));
+  app.add_option("--run-dir", run_dir, "folder for the nodes' output logs (omit: none)");
+  app.add_option("--control-writer", control_writer,
+                 "GUID of the launcher's mechsim/control writer: a command of this run from any other writer fails the run");
+  app.add_option("--replay", replays, "NODE=TABLE: the node publishes this table (written by `mechsim launch --replay`)");
+  std::uint64_t resume_step = 0;
+  int generation = 0;
+  auto* resume_option = app.add_option("--resume", resume_step,
+                                       "restart after a crash: every node resumes from its checkpoint of this step (docs/faults.md)");
+  app.add_option("--generation", generation, "the rollback generation the resumed nodes belong to")->needs(resume_option);
+  CLI11_PARSE(app, argc, argv);
+
+  stop_on_signals();
+  try {
+    const config::Scene scene = config::load_scene(scene_path);
+    std::map<std::string, std::string> replay_of;
+    for (const auto& r : replays) {
+      const auto eq = r.find('=');
+      if (eq == std::string::npos) {
+        std::cerr << "node group: --replay expects NODE=TABLE, got '" << r << "'\n";
+        return 2;
+      }
+      replay_of[r.substr(0, eq)] = r.substr(eq + 1);
+    }
+    const config::ParticipantSpec* first = nullptr;
+    for (const auto& name : node_names) {
+      const auto* spec = scene.find_participant(name);
+      if (!spec) {
+        std::cerr << "node group: no participant '" << name << "' in " << scene_path << "\n";
+        return 2;
+      }
+      if (spec->process.empty() || (first && spec->process != first->process)) {
+        std::cerr << "node group: participant '" << name << "' is not in process group '" << (first ? first->process : spec->process)
+                  << "' of " << scene_path << "\n";
+        return 2;
+      }
+      if (!first) first = spec;
+    }
+    apply_realtime(scene, *first, run_dir, node_names);
+    cosim::NodeRunOptions options;
+    options.run_dir = run_dir;
+    options.run_id = run_id;
+    options.domain = domain;
+    options.control_writer = control_writer;
+    if (resume_option->count() > 0) options.resume_step = resume_step;
+    options.generation = generation;
+    cosim::ThreadNodeHost threads(
+        node_names,
+        [&](const std::string& node) {
+          return cosim::ThreadNodeHost::Parts{node_plan(scene, node, replay_of.count(node) ? replay_of[node] : ""),
+                                              transport::create_participant(scene.find_participant(node)->vendor, domain)};
+        },
+        options);
+    threads.start_all();
+    // The process ends with its nodes; the first node that fails stops the others (its
+    // exit code is the process's), as a node process that fails ends its node.
+    int code = 0;
+    for (std::size_t running = node_names.size(); running > 0;) {
+      for (const cosim::NodeExit& e : threads.poll()) {
+        --running;
+        if (const int c = threads.exit_code(e.node); c != 0 && code == 0) {
+          code = c;
+          threads.request_stop();
+        }
+      }
+      if (stop_signalled()) threads.request_stop();
+      threads.wait_for_exit(std::chrono::milliseconds(100));
+    }
+    threads.stop_all(0);
+    return code;
+  } catch (const config::ConfigError& e) {
+    std::cerr << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "node group: " << e.what() << "\n";
+    return 1;
+  }
+}
+
+}  // namespace mechsim::nodes

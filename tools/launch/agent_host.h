@@ -1,0 +1,48 @@
+// The nodes an agent starts on another host (cosim/node_host.h, agent_client.h): started
+// with the same arguments as a local node, watched through the agent's exit reports and
+// the nodes' statuses (a silent one is unreachable after the partition grace, not hung),
+// stopped through the agent. Not restarted: a restart with rollback is local only.
+#pragma once
+
+#include <chrono>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "agent_client.h"
+#include "mechsim/cosim/node_host.h"
+#include "node_processes.h"
+
+namespace mechsim::launch {
+
+struct RemoteNode {
+  std::string name;
+  std::string host;     // the scene's name of the host
+  std::string address;  // its agent's address
+  std::string request;  // the start text (JSON, agent_protocol.h)
+};
+
+class AgentNodeHost : public cosim::NodeHost {
+ public:
+  // `agents` outlives this host.
+  AgentNodeHost(hostrun::AgentClient& agents, std::vector<RemoteNode> nodes) : agents_(agents), planned_(std::move(nodes)) {}
+
+  std::vector<std::string> nodes() const override;
+  void start_all() override;
+  std::vector<cosim::NodeExit> poll() override;
+  bool exited(const std::string& node) const override { return processes_.find(node).exited; }
+  std::string describe_exit(const std::string& node) const override { return processes_.find(node).describe_exit(); }
+  bool remote(const std::string&) const override { return true; }
+  std::string placement(const std::string& node) const override;
+  void request_stop() override;
+  void stop_all(double grace_s) override;
+  void pump() override { agents_.pump(); }
+
+ private:
+  hostrun::AgentClient& agents_;
+  std::vector<RemoteNode> planned_;
+  hostrun::NodeProcesses processes_;
+  std::chrono::steady_clock::time_point stop_requested_{};
+};
+
+}  // namespace mechsim::launch
