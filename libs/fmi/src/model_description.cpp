@@ -60,7 +60,6 @@ const UnitDefinition* ModelDescription::find_unit(std::string_view name) const {
     if (u.name == name) return &u;
   return nullptr;
 }
-std::string_view ModelDescription::type_name(const Variable& v) const { return v.type_element; }
 
 namespace {
 
@@ -179,6 +178,7 @@ struct Parser {
 
   void read_variables_fmi2(const pugi::xml_node& root, ModelDescription& md) const {
     const auto types = type_units(root);
+    std::vector<int> derivative_of;  // per variable: the index of the variable it is the derivative of
     int index = 0;
     for (const auto& sv : root.child("ModelVariables").children("ScalarVariable")) {
       ++index;
@@ -202,17 +202,23 @@ struct Parser {
       v.unit = typed.attribute("unit").as_string();
       if (v.unit.empty() && !v.declared_type.empty()) v.unit = lookup(types, v.declared_type);
       v.start = optional_text(typed.attribute("start"));
+      derivative_of.push_back(typed.attribute("derivative").as_int(0) - 1);  // 1-based index -> 0-based
       md.variables.push_back(std::move(v));
     }
-    const auto structure = root.child("ModelStructure");
-    md.number_of_continuous_states =
-        static_cast<int>(std::distance(structure.child("Derivatives").children("Unknown").begin(),
-                                       structure.child("Derivatives").children("Unknown").end()));
+    // <Derivatives><Unknown index> (1-based into ModelVariables), in the states' order.
+    for (const auto& unknown : root.child("ModelStructure").child("Derivatives").children("Unknown")) {
+      const int derivative = unknown.attribute("index").as_int(0) - 1;
+      const bool known = derivative >= 0 && derivative < static_cast<int>(derivative_of.size());
+      const int state = known ? derivative_of[static_cast<std::size_t>(derivative)] : -1;
+      md.state_variables.push_back(state >= 0 && state < static_cast<int>(md.variables.size()) ? state : -1);
+    }
+    md.number_of_continuous_states = static_cast<int>(md.state_variables.size());
     md.number_of_event_indicators = root.attribute("numberOfEventIndicators").as_int(0);
   }
 
   void read_variables_fmi3(const pugi::xml_node& root, ModelDescription& md) const {
     const auto types = type_units(root);
+    std::vector<long long> derivative_of;  // per variable: the value reference it is the derivative of, -1
     int index = 0;
     for (const auto& e : root.child("ModelVariables").children()) {
       if (e.type() != pugi::node_element) continue;
@@ -236,14 +242,25 @@ struct Parser {
       v.unit = e.attribute("unit").as_string();
       if (v.unit.empty() && !v.declared_type.empty()) v.unit = lookup(types, v.declared_type);
       v.start = optional_text(e.attribute("start"));
+      const auto derivative = e.attribute("derivative");
+      derivative_of.push_back(derivative ? static_cast<long long>(derivative.as_ullong()) : -1);
       md.variables.push_back(std::move(v));
     }
-    const auto structure = root.child("ModelStructure");
-    for (const auto& n : structure.children()) {
+    const auto index_of_reference = [&](long long vr) {
+      for (std::size_t i = 0; i < md.variables.size(); ++i)
+        if (md.variables[i].value_reference == vr) return static_cast<int>(i);
+      return -1;
+    };
+    for (const auto& n : root.child("ModelStructure").children()) {
       const std::string name = n.name();
-      if (name == "ContinuousStateDerivative") ++md.number_of_continuous_states;
+      if (name == "ContinuousStateDerivative") {
+        const int derivative = index_of_reference(n.attribute("valueReference").as_llong(-1));
+        md.state_variables.push_back(
+            derivative >= 0 ? index_of_reference(derivative_of[static_cast<std::size_t>(derivative)]) : -1);
+      }
       if (name == "EventIndicator") ++md.number_of_event_indicators;
     }
+    md.number_of_continuous_states = static_cast<int>(md.state_variables.size());
   }
 };
 

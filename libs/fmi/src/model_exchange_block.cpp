@@ -38,7 +38,13 @@ ModelExchangeBlock::ModelExchangeBlock(const FmuArchive& archive, const std::map
     outputs_.push_back(&v);
     declare_output(v.name, unit_of(v), all_inputs);
   }
-  for (int i = 0; i < md.number_of_continuous_states; ++i) declare_state("state[" + std::to_string(i) + "]", "");
+  for (int i = 0; i < md.number_of_continuous_states; ++i) {
+    const int v = md.state_variables[static_cast<std::size_t>(i)];
+    if (v >= 0)
+      declare_state(md.variables[static_cast<std::size_t>(v)].name, md.variables[static_cast<std::size_t>(v)].unit);
+    else
+      declare_state("state[" + std::to_string(i) + "]", "");
+  }
   num_indicators_ = md.number_of_event_indicators;
 
   // Refuse unknown parameters before anything runs.

@@ -35,6 +35,10 @@ TEST_P(LagDescription, VersionInterfaceVariablesAndPlatform) {
   EXPECT_FALSE(i.needs_execution_tool);
   EXPECT_EQ(md.number_of_continuous_states, 1);
   EXPECT_EQ(md.number_of_event_indicators, 0);
+  // The state is y: der(y) is declared its derivative and listed as the state derivative.
+  ASSERT_EQ(md.state_variables.size(), 1u);
+  ASSERT_GE(md.state_variables[0], 0);
+  EXPECT_EQ(md.variables.at(static_cast<std::size_t>(md.state_variables[0])).name, "y");
   ASSERT_TRUE(md.default_step_size.has_value());
   EXPECT_DOUBLE_EQ(*md.default_step_size, 0.001);
 

@@ -37,6 +37,7 @@ TEST_P(LagBlock, CvodeMatchesTheClosedForm) {
   EXPECT_EQ(block.inputs()[0].unit, "V");
   EXPECT_EQ(block.outputs()[0].name, "y");
   EXPECT_EQ(block.outputs()[0].feedthrough, std::vector<int>{0});  // conservative: every input
+  EXPECT_EQ(block.state_names(), std::vector<std::string>{"y"});
   double x0 = 0.0;
   block.initial_state(0.0, {&x0, 1});
   EXPECT_EQ(x0, 0.5);
@@ -68,6 +69,7 @@ TEST_P(BouncingBlock, ImpactsFoundByTheIntegrator) {
   const FmuArchive archive(FmuLabel{test_fmu(GetParam()), "mass"});
   ModelExchangeBlock block(archive, {{"restitution", 0.8}}, 0.0, 2.0);
   ASSERT_EQ(block.num_event_functions(), 1);
+  EXPECT_EQ(block.state_names(), (std::vector<std::string>{"height", "velocity"}));
   std::vector<double> x(2);
   block.initial_state(0.0, x);
   solve::BlockIntegrator integrator(block, tight(), 0.0, x);

@@ -25,7 +25,7 @@ std::string_view to_string(FmiVersion v);     // "2.0", "3.0"
 std::string_view to_string(InterfaceKind k);  // "co-simulation", "model-exchange"
 std::string_view to_string(Causality c);      // as in the standard: "calculatedParameter", ...
 std::string_view to_string(Variability v);
-std::string_view to_string(ValueType t);      // "Real"/"Float64" by version: see type_name()
+std::string_view to_string(ValueType t);      // "real", "integer", "boolean", "other"
 
 // One interface the FMU offers (<CoSimulation> or <ModelExchange>) and its capability flags.
 struct Interface {
@@ -69,14 +69,15 @@ struct ModelDescription {
   std::vector<Variable> variables;
   std::vector<UnitDefinition> units;
   int number_of_continuous_states = 0;  // from ModelStructure (derivatives)
+  // The continuous states in the FMU's order: the variables the listed derivatives are the
+  // derivatives of (index into `variables`; -1 where the description does not say).
+  std::vector<int> state_variables;
   int number_of_event_indicators = 0;
   std::optional<double> default_start_time, default_stop_time, default_tolerance, default_step_size;
 
   const Interface* find_interface(InterfaceKind kind) const;
   const Variable* find_variable(std::string_view name) const;
   const UnitDefinition* find_unit(std::string_view name) const;
-  // The name of a type in this FMI version: Real/Integer/Boolean (2), Float64/Int32/Boolean (3).
-  std::string_view type_name(const Variable& v) const;
 };
 
 // Parses the text of modelDescription.xml. Refuses (FmuError naming `label`) malformed XML

@@ -4,7 +4,8 @@
 //
 // Ports: the FMU's Real/Float64 variables of causality input and output, by name, with the
 // FMU's units (Integer/Int32 and Boolean inputs and outputs are carried as doubles). States:
-// the FMU's continuous states, named state[0], state[1], ... in the FMU's order. Events: the
+// the FMU's continuous states in its order, named after the variables their derivatives
+// are declared for (state[i] where the description does not say). Events: the
 // FMU's event indicators, either crossing direction; at a crossing the FMU's event iteration
 // runs (enter event mode, update discrete states until settled) and may jump the states.
 //
