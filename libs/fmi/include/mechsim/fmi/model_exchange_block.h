@@ -16,6 +16,8 @@
 // for time events (nextEventTime: not supported yet) or to terminate, NaN/inf outputs.
 // fmi2CompletedIntegratorStep / fmi3CompletedIntegratorStep is not called (the integrator
 // has no per-step hook): an FMU that needs it for step events is not run correctly.
+// Checkpoints hold the continuous states only (the FMU's discrete state, e.g. a counter, is
+// not saved): a rollback of an FMU with discrete state is not supported yet.
 #pragma once
 
 #include <map>
@@ -50,8 +52,6 @@ class ModelExchangeBlock final : public models::Block {
  private:
   // Hands t, x and u to the FMU (the calls every evaluation starts with).
   void load(double t, std::span<const double> x, std::span<const double> u) const;
-  void set_value(const Variable& v, double value) const;
-  double get_value(const Variable& v) const;
 
   const FmuArchive& archive_;
   std::unique_ptr<FmuInstance> fmu_;
