@@ -4,9 +4,10 @@
 
 namespace mechsim::fmi {
 
-CoSimulationBlock::CoSimulationBlock(const FmuArchive& archive, const std::map<std::string, double>& parameters,
+CoSimulationBlock::CoSimulationBlock(std::shared_ptr<const FmuArchive> archive_in, const std::map<std::string, double>& parameters,
                                      double t0, double t_stop, double step_size)
-    : Block("fmu"), archive_(archive), step_size_(step_size), last_sample_(t0) {
+    : Block("fmu"), archive_(std::move(archive_in)), step_size_(step_size), last_sample_(t0) {
+  const FmuArchive& archive = *archive_;
   if (!(step_size > 0))
     throw FmuError(archive.label(), "the co-simulation step must be > 0 s (got " + std::to_string(step_size) + ")");
   const ExchangedVariables ports = exchanged_variables(archive.description());
@@ -35,7 +36,7 @@ void CoSimulationBlock::discrete_update(double t, std::span<double>, std::span<c
 void CoSimulationBlock::restore_discrete_state(std::span<const double> saved) {
   // Only the held outputs: the FMU's own state is not restored (see the header).
   if (saved.size() != held_.size())
-    throw FmuError(archive_.label(), "restore: expected " + std::to_string(held_.size()) + " held outputs");
+    throw FmuError(archive_->label(), "restore: expected " + std::to_string(held_.size()) + " held outputs");
   held_.assign(saved.begin(), saved.end());
 }
 

@@ -17,9 +17,10 @@ void check_update(const DiscreteUpdate& update, const FmuLabel& label, double t)
 
 }  // namespace
 
-ModelExchangeBlock::ModelExchangeBlock(const FmuArchive& archive, const std::map<std::string, double>& parameters,
+ModelExchangeBlock::ModelExchangeBlock(std::shared_ptr<const FmuArchive> archive_in, const std::map<std::string, double>& parameters,
                                        double t0, double t_stop)
-    : Block("fmu"), archive_(archive) {
+    : Block("fmu"), archive_(std::move(archive_in)) {
+  const FmuArchive& archive = *archive_;
   const ModelDescription& md = archive.description();
   const ExchangedVariables ports = exchanged_variables(md);
   inputs_ = ports.inputs;
@@ -77,7 +78,7 @@ bool ModelExchangeBlock::handle_events(double t, std::span<double> x, std::span<
   load(t, x, u);
   fmu_->enter_event_mode();
   const DiscreteUpdate update = fmu_->update_discrete_states();
-  check_update(update, archive_.label(), t);
+  check_update(update, archive_->label(), t);
   fmu_->enter_continuous_time_mode();
   if (update.states_changed) fmu_->get_continuous_states(x);
   return update.states_changed;

@@ -21,7 +21,7 @@ class LagCoSimulationBlock : public ::testing::TestWithParam<const char*> {};
 // the closed form (the input is constant, so holding it loses nothing); the FMU's RK4
 // substeps keep it to round-off (see instance_test.cpp): 1e-10 V.
 TEST_P(LagCoSimulationBlock, HeldOutputsFollowTheClosedForm) {
-  const FmuArchive archive(FmuLabel{test_fmu(GetParam()), "lag"});
+  const auto archive = std::make_shared<const FmuArchive>(FmuLabel{test_fmu(GetParam()), "lag"});
   CoSimulationBlock block(archive, {{"k", 2.0}, {"T", 0.05}, {"y0", 0.5}}, 0.0, 1.0, 1e-3);
   ASSERT_EQ(block.num_states(), 0);
   EXPECT_EQ(block.sample_time(), 1e-3);
@@ -57,7 +57,7 @@ TEST_P(ServoAmplifierCoSimulation, MatchesTheNativeSampledAmplifier) {
   params.setpoint_source = models::nc::SetpointSource::external;
   params.sample_time = ts;
   models::nc::ServoAmplifierBlock native(params);
-  const FmuArchive archive(FmuLabel{test_fmu(GetParam()), "amp"});
+  const auto archive = std::make_shared<const FmuArchive>(FmuLabel{test_fmu(GetParam()), "amp"});
   CoSimulationBlock fmu(archive, {}, 0.0, 1.0, ts);
   ASSERT_EQ(fmu.num_inputs(), 3);
   for (const char* name : {"tacho_voltage", "spindle_angle", "position_setpoint"})
@@ -108,7 +108,7 @@ INSTANTIATE_TEST_SUITE_P(TestFmus, ServoAmplifierCoSimulation,
 
 TEST(CoSimulationBlock, StepErrorNamesFunctionAndTime) {
   const std::string file = test_fmu("faulty_fmi2_cs");
-  const FmuArchive archive(FmuLabel{file, "bad"});
+  const auto archive = std::make_shared<const FmuArchive>(FmuLabel{file, "bad"});
   CoSimulationBlock block(archive, {{"fault", 1}, {"fault_time", 0.25}}, 0.0, 1.0, 0.125);
   solve::BlockIntegrator integrator(block, {}, 0.0, {});
   integrator.advance_to(0.25, {});

@@ -28,7 +28,7 @@ class LagBlock : public ::testing::TestWithParam<const char*> {};
 // few hundred steps to 0.5 s on this contracting system the global error stays within a
 // small multiple of that: 1e-8 V is asked, while a wrong parameter or port misses by > 1e-2 V.
 TEST_P(LagBlock, CvodeMatchesTheClosedForm) {
-  const FmuArchive archive(FmuLabel{test_fmu(GetParam()), "lag"});
+  const auto archive = std::make_shared<const FmuArchive>(FmuLabel{test_fmu(GetParam()), "lag"});
   ModelExchangeBlock block(archive, {{"k", 2.0}, {"T", 0.05}, {"y0", 0.5}}, 0.0, 1.0);
   ASSERT_EQ(block.num_inputs(), 1);
   ASSERT_EQ(block.num_outputs(), 1);
@@ -66,7 +66,7 @@ class BouncingBlock : public ::testing::TestWithParam<const char*> {};
 // integrated to rtol 1e-10: 1e-7 m on the height and 1e-6 s on the impact times are asked;
 // a missed impact, a doubled one or a wrong restitution misses by centimetres.
 TEST_P(BouncingBlock, ImpactsFoundByTheIntegrator) {
-  const FmuArchive archive(FmuLabel{test_fmu(GetParam()), "mass"});
+  const auto archive = std::make_shared<const FmuArchive>(FmuLabel{test_fmu(GetParam()), "mass"});
   ModelExchangeBlock block(archive, {{"restitution", 0.8}}, 0.0, 2.0);
   ASSERT_EQ(block.num_event_functions(), 1);
   EXPECT_EQ(block.state_names(), (std::vector<std::string>{"height", "velocity"}));
@@ -97,7 +97,7 @@ INSTANTIATE_TEST_SUITE_P(TestFmus, BouncingBlock, ::testing::Values("bouncing_ma
 
 TEST(ModelExchangeBlock, SceneParametersTheFmuLacksAreRefused) {
   const std::string file = test_fmu("lag_fmi3_me");
-  const FmuArchive archive(FmuLabel{file, "lag"});
+  const auto archive = std::make_shared<const FmuArchive>(FmuLabel{file, "lag"});
   try {
     ModelExchangeBlock block(archive, {{"k_p", 40.0}}, 0.0, 1.0);
     ADD_FAILURE() << "not refused";

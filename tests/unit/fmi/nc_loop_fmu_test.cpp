@@ -97,7 +97,7 @@ TEST_P(NcLoopWithFmu, ModelExchangeMatchesTheNativeLoop) {
 
   cosim::ScenePlan fmu_plan = cosim::ScenePlan::build(scene);
   const auto& amplifier = dynamic_cast<const models::nc::ServoAmplifierBlock&>(*fmu_plan.node("servo").block);
-  const FmuArchive archive(FmuLabel{test_fmu(std::string(GetParam()) + "_me"), "servo"});
+  const auto archive = std::make_shared<const FmuArchive>(FmuLabel{test_fmu(std::string(GetParam()) + "_me"), "servo"});
   swap_in(fmu_plan, std::make_unique<ModelExchangeBlock>(archive, fmu_parameters(amplifier.params()), 0.0, 0.05));
   const cosim::ReferenceRun with_fmu = cosim::run_reference(fmu_plan);
 
@@ -121,7 +121,7 @@ TEST_P(NcLoopWithFmu, CoSimulationMatchesTheNativeSampledLoop) {
   cosim::ScenePlan fmu_plan = cosim::ScenePlan::build(scene);
   const auto& amplifier = dynamic_cast<const models::nc::ServoAmplifierBlock&>(*fmu_plan.node("servo").block);
   ASSERT_EQ(amplifier.params().sample_time, 1e-3);
-  const FmuArchive archive(FmuLabel{test_fmu(std::string(GetParam()) + "_cs"), "servo"});
+  const auto archive = std::make_shared<const FmuArchive>(FmuLabel{test_fmu(std::string(GetParam()) + "_cs"), "servo"});
   swap_in(fmu_plan,
           std::make_unique<CoSimulationBlock>(archive, fmu_parameters(amplifier.params()), 0.0, 0.05, 1e-3));
   const cosim::ReferenceRun with_fmu = cosim::run_reference(fmu_plan);

@@ -30,10 +30,10 @@ namespace mechsim::fmi {
 
 class CoSimulationBlock final : public models::Block {
  public:
-  // Instantiates the FMU of `archive` (which must outlive the block) for co-simulation,
+  // Instantiates the FMU of `archive` (shared: the unpacked folder lives as long as the block) for co-simulation,
   // sets `parameters` (name -> value in the FMU's unit) in initialization mode, initializes
   // it at t0, and steps it every `step_size` seconds (> 0).
-  CoSimulationBlock(const FmuArchive& archive, const std::map<std::string, double>& parameters, double t0,
+  CoSimulationBlock(std::shared_ptr<const FmuArchive> archive, const std::map<std::string, double>& parameters, double t0,
                     double t_stop, double step_size);
 
   void calc_outputs(double t, std::span<const double> x, std::span<const double> u,
@@ -44,7 +44,7 @@ class CoSimulationBlock final : public models::Block {
   void restore_discrete_state(std::span<const double> saved) override;
 
  private:
-  const FmuArchive& archive_;
+  std::shared_ptr<const FmuArchive> archive_;
   std::unique_ptr<FmuInstance> fmu_;
   std::vector<const Variable*> inputs_, outputs_;
   double step_size_;

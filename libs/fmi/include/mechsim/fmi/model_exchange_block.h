@@ -32,10 +32,10 @@ namespace mechsim::fmi {
 
 class ModelExchangeBlock final : public models::Block {
  public:
-  // Instantiates the FMU of `archive` (which must outlive the block) for model exchange,
+  // Instantiates the FMU of `archive` (shared: the unpacked folder lives as long as the block) for model exchange,
   // sets `parameters` (name -> value in the FMU's unit) in initialization mode and
   // initializes it at t0.
-  ModelExchangeBlock(const FmuArchive& archive, const std::map<std::string, double>& parameters, double t0,
+  ModelExchangeBlock(std::shared_ptr<const FmuArchive> archive, const std::map<std::string, double>& parameters, double t0,
                      double t_stop);
 
   void initial_state(double t0, std::span<double> x) const override;
@@ -53,7 +53,7 @@ class ModelExchangeBlock final : public models::Block {
   // Hands t, x and u to the FMU (the calls every evaluation starts with).
   void load(double t, std::span<const double> x, std::span<const double> u) const;
 
-  const FmuArchive& archive_;
+  std::shared_ptr<const FmuArchive> archive_;
   std::unique_ptr<FmuInstance> fmu_;
   std::vector<const Variable*> inputs_, outputs_;
   std::vector<double> x0_;
