@@ -73,6 +73,14 @@ std::unique_ptr<models::Block> make_fmu_block(const config::Scene& scene, const 
   if (coupling)
     refuse(scene, key, "expected no coupling element at a participant played by an FMU (the cut's spring-damper "
                        "is evaluated by the native blocks)");
+  // A checkpoint does not hold the FMU's own state (fmiXGetFMUState is not used yet), so
+  // neither a rollback nor an adaptive step's retry can put the FMU back.
+  if (spec.restart)
+    refuse(scene, spec.key_path + ".restart",
+           "expected restart: never for a participant played by an FMU (its state is not checkpointed yet)");
+  if (scene.time.adaptive)
+    refuse(scene, key, "expected a fixed macro step (time.step) with a participant played by an FMU: an adaptive step "
+                       "retries steps, and the FMU's state is not checkpointed yet");
   // The file, relative to the scene file's folder.
   fs::path file = f.string("file");
   if (file.is_relative()) file = fs::path(scene.file).parent_path() / file;
@@ -85,7 +93,7 @@ std::unique_ptr<models::Block> make_fmu_block(const config::Scene& scene, const 
     archive = std::make_shared<const fmi::FmuArchive>(fmi::FmuLabel{file.string(), spec.name});
     archive->binary_path(kind);  // the interface and this host's binary, before anything else
   } catch (const fmi::FmuError& e) {
-    refuse(scene, key + ".file", std::string("a usable FMU: ") + e.what());
+    refuse(scene, key + ".file", std::string("expected a usable FMU: ") + e.what());
   }
   const fmi::ModelDescription& md = archive->description();
 
@@ -135,7 +143,7 @@ std::unique_ptr<models::Block> make_fmu_block(const config::Scene& scene, const 
     const double step = f.has("step") ? f.positive_quantity("step", config::dim::time) : scene.time.step;
     return std::make_unique<fmi::CoSimulationBlock>(archive, parameters, scene.time.start, scene.time.end, step);
   } catch (const fmi::FmuError& e) {
-    refuse(scene, key, std::string("an FMU that initializes: ") + e.what());
+    refuse(scene, key, std::string("expected an FMU that initializes: ") + e.what());
   }
 }
 

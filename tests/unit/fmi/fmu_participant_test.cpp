@@ -200,6 +200,23 @@ TEST_F(FmuParticipantRefusals, UnitDifferentFromTheNativePort) {
       << what;
 }
 
+TEST_F(FmuParticipantRefusals, RestartAndAdaptiveStep) {
+  const std::string fmu = "fmu: {file: " + test_fmu("servo_amplifier_fmi2_me") + ", interface: model-exchange}";
+  std::string what = refusal(fmu + "\n    restart: on_failure");
+  EXPECT_NE(what.find("participants.servo.restart: expected restart: never for a participant played by an FMU"),
+            std::string::npos)
+      << what;
+  const std::string path = scene_with_fmu(scratch_, fmu, "adaptive.yaml");
+  try {
+    cosim::ScenePlan::build(config::load_scene(path, {"time.step=adaptive", "time.tolerance=1e-3",
+                                                      "time.min=1 us", "time.max=100 us"}));
+    ADD_FAILURE() << "not refused";
+  } catch (const config::ConfigError& e) {
+    what = e.what();
+    EXPECT_NE(what.find("participants.servo.fmu: expected a fixed macro step"), std::string::npos) << what;
+  }
+}
+
 TEST_F(FmuParticipantRefusals, UnknownKey) {
   const std::string what = refusal("fmu: {file: x.fmu, version: 2}");
   EXPECT_NE(what.find("version"), std::string::npos) << what;
