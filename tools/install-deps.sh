@@ -15,6 +15,7 @@ packages=(
   libeigen3-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev
   gnuplot-nox                             # PNG plots
   libzstd-dev liblz4-dev                  # MCAP chunk compression
+  libzip-dev libpugixml-dev               # FMU import: the archive and modelDescription.xml
   openssl                                 # `mechsim security init` (docs/security.md)
 )
 case "${1:-}" in

@@ -341,7 +341,7 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   for (const std::string& name : participants.keys()) {
     ConfigNode p = participants.child(name);
     if (!valid_name(name)) p.fail("expected an instance name of letters, digits and '_'");
-    p.allow_only({"type", "params", "dds", "host", "process", "solver", "realtime", "restart"});
+    p.allow_only({"type", "params", "dds", "host", "process", "solver", "realtime", "restart", "fmu"});
     ParticipantSpec spec;
     spec.name = name;
     spec.type = p.string("type");
@@ -381,6 +381,7 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
     if (auto s = p.optional_child("solver")) spec.solver = parse_solver(*s);
     if (scene.time.adaptive) adaptive_solver_tolerances(spec.solver, scene.time.adaptive->tolerance);
     spec.params = p.has("params") ? p.child("params") : ConfigNode::from_string("{}", root.file());
+    if (p.has("fmu")) spec.fmu = p.child("fmu");
     spec.key_path = p.path();
     scene.participants.push_back(std::move(spec));
   }

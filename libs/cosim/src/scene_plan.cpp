@@ -1,5 +1,7 @@
 #include "mechsim/cosim/scene_plan.h"
 
+#include "fmu_participant.h"
+
 #include "mechsim/config/units.h"
 #include "mechsim/cosim/nc_params.h"
 
@@ -244,6 +246,8 @@ ScenePlan ScenePlan::build_time_run(const config::Scene& scene) {
     };
     try {
       node.block = node.type->make_block(spec.params, coupling);
+      // An FMU in place of the native block, which stays the template of its ports.
+      if (spec.fmu) node.block = make_fmu_block(scene, spec, *node.type, *node.block, coupling);
     } catch (const std::invalid_argument& e) {
       refuse_params(e);
     } catch (const std::domain_error& e) {

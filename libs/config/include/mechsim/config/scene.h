@@ -95,6 +95,9 @@ struct ParticipantSpec {
   ProcessRealtimeSpec process_realtime;  // the scene's realtime settings with this participant's over them
   bool restart = false;  // restarted after a crash (faults.restart, or the participant's own restart:)
   ConfigNode params;   // type-specific, validated by the node type
+  // `fmu: {file, interface, step, parameters}`: an FMU plays this participant in place of
+  // its node type's native block (libs/cosim fmu_participant.h, docs/fmi.md).
+  std::optional<ConfigNode> fmu;
   std::string key_path;  // "participants.cam" for error messages
 };
 
