@@ -27,7 +27,7 @@ struct RunFacts {
   std::uint64_t run_id;
   const std::string& run_dir;
   int domain;
-  const HostLayout& hosts;
+  const hostrun::HostLayout& hosts;
   const std::map<std::string, std::string>* agents;  // the agents' hello texts (multi-host runs)
   const std::vector<std::string>& hand_back_problems;
   const cosim::Supervisor& supervisor;
