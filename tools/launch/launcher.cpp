@@ -59,7 +59,7 @@ void on_interrupt(int sig) { g_interrupt.store(sig); }
 
 // The DDS lease of a multi-host run: a cut shorter than the partition grace must not make
 // the participants forget each other (what was written meanwhile would be lost for good).
-double lease_for(const config::Scene& scene) { return scene.faults.partition_grace + 3.0; }
+double lease_for(const config::Scene& scene) { return config::fault_timings(scene).dds_lease; }
 
 
 std::string hex_id(std::uint64_t id) {
@@ -226,7 +226,7 @@ void Run::print_progress(double since_start, bool final_line) {
   const double rate = since_start > 0 ? static_cast<double>(step) / since_start : 0.0;
   const double rtf = since_start > 0 ? (t - scene_.time.start) / since_start : 0.0;
   std::string realtime;
-  if (scene_.mode == "realtime") {
+  if (scene_.mode == config::RunMode::realtime) {
     long long missed = 0;
     double late = 0, p99 = 0;
     for (const auto& [name, w] : watch_) {
@@ -286,7 +286,7 @@ RunOutcome Run::run_nodes() {
       if (s->header.run_id != run_id_) continue;
       auto it = watch_.find(s->node);
       if (it == watch_.end()) continue;
-      if (s->message.rfind("cannot keep up", 0) == 0 && it->second.last.message != s->message) {
+      if (s->warning == transport::NodeWarning::cannot_keep_up && it->second.last.warning != s->warning) {
         if (tty_ && opt_.progress) std::fprintf(stderr, "\n");
         std::fprintf(stderr, "mechsim: warning: node '%s' %s\n", s->node.c_str(), s->message.c_str());
         warnings_.push_back("node '" + s->node + "' " + s->message);
@@ -326,7 +326,7 @@ RunOutcome Run::run_nodes() {
           if (const auto at = line.find(message.substr(0, 40)); at != std::string::npos) message = line.substr(at);
         }
         if (!message.empty()) reason += ": " + message;
-        if (message.find("diverged") != std::string::npos) reason += divergence_advice(p->name);
+        if (w.seen && transport::points_to_divergence(w.last.error)) reason += divergence_advice(p->name);
         fail(out, p->name, reason);
       }
     }
@@ -370,7 +370,6 @@ RunOutcome Run::run_nodes() {
     rollback.step = *common;
     rollback.generation = generation;
     control_->write(rollback);
-    const std::string expected = cosim::rolled_back_message(*common, generation);
     auto restart = [&](NodeProcess& p) {
       std::vector<std::string> args = node_args_.at(p.name);
       args.insert(args.end(), {"--resume", std::to_string(*common), "--generation", std::to_string(generation)});
@@ -394,13 +393,13 @@ RunOutcome Run::run_nodes() {
         return;
       }
       bool all = true;
-      for (const auto& [name, w] : watch_) all = all && w.last.state == transport::NodeState::ready && w.last.message == expected;
+      for (const auto& [name, w] : watch_) all = all && w.last.back_at(*common, generation);
       if (all) break;
       if (g_interrupt) return;
       if (seconds_since(asked) > opt_.ready_timeout_s) {
         std::string late;
         for (const auto& [name, w] : watch_)
-          if (w.last.state != transport::NodeState::ready || w.last.message != expected) late += (late.empty() ? "" : ", ") + name;
+          if (!w.last.back_at(*common, generation)) late += (late.empty() ? "" : ", ") + name;
         fail(out, late, "nodes not back at step " + std::to_string(*common) + " after " + std::to_string(opt_.ready_timeout_s) + " s: " + late);
         return;
       }
@@ -472,7 +471,7 @@ RunOutcome Run::run_nodes() {
   }
 
   // 2. Start, then watch until every node is done.
-  const bool realtime = scene_.mode == "realtime";
+  const bool realtime = scene_.mode == config::RunMode::realtime;
   start = transport::ControlMessage{run_id_, transport::ControlCommand::start, scene_.time.end, scene_.time.step,
                                     realtime ? transport::RunMode::realtime : transport::RunMode::lockstep, scene_.rtf, 0, 0, 0, {}};
   // Real-time pacing counts from the start command: step 0 is due a moment after it is
@@ -526,7 +525,7 @@ RunOutcome Run::run_nodes() {
       std::string unreachable, first;
       for (auto& p : processes_.processes()) {
         const auto& w = watch_[p.name];
-        if (p.exited || p.host.empty() || seconds_since(w.last_seen) <= scene_.faults.partition_grace / 2) continue;
+        if (p.exited || p.host.empty() || seconds_since(w.last_seen) <= config::fault_timings(scene_).silence_warning) continue;
         const auto* spec = scene_.find_participant(p.name);
         unreachable += (unreachable.empty() ? "" : ", ") + ("'" + p.name + "' on host " + spec->host + " (" + p.host + ")");
         if (seconds_since(w.last_seen) > scene_.faults.partition_grace && first.empty()) first = p.name;
@@ -621,7 +620,7 @@ json Run::summarise(const RunOutcome& out) {
     s["dds_security"] = scene_.security_dir;
     s["dds_protection"] = scene_.security_protection;
   }
-  s["mode"] = scene_.mode;
+  s["mode"] = config::to_string(scene_.mode);
   s["redundant_samples"] = scene_.faults.redundant();
   if (scene_.checkpointing()) {
     json restarts = json::array();
@@ -706,7 +705,7 @@ json Run::summarise(const RunOutcome& out) {
   s["events"] = events;
   std::vector<std::string> node_names;
   for (const auto& p : processes_.processes()) node_names.push_back(p.name);
-  if (scene_.mode == "realtime") s["realtime"] = realtime_summary(scene_, *plan_.grid(), node_names, run_dir_, warnings_);
+  if (scene_.mode == config::RunMode::realtime) s["realtime"] = realtime_summary(scene_, *plan_.grid(), node_names, run_dir_, warnings_);
   s["process_realtime"] = process_settings_summary(node_names, run_dir_);
   return s;
 }

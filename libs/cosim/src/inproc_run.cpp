@@ -68,7 +68,7 @@ InprocRunResult run_inproc(const config::Scene& scene, const InprocRunOptions& o
     result.ok = false;
     result.failed_node = node;
     result.reason = reason;
-    result.diverged = reason.find("diverged") != std::string::npos;
+    for (auto& slot : slots) result.diverged = result.diverged || (slot->name == node && slot->seen && transport::points_to_divergence(slot->last.error));
     for (auto& slot : slots)
       if (slot->name == node && slot->seen) result.failed_step = slot->last.header.step;
   };

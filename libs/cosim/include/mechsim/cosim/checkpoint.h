@@ -42,8 +42,9 @@ std::optional<std::uint64_t> common_checkpoint(const std::string& run_dir, const
 // held by the fastest (lock-step nodes differ by a few steps per node of the scene).
 int checkpoints_to_keep(long checkpoint_every, std::size_t nodes);
 
-// The status message of a node that holds the checkpoint of `step` and waits for resume:
-// the launcher resumes the run when every node says it for the rollback's generation.
+// The words of the status message, for people, of a node that holds the checkpoint of
+// `step` and waits for resume; the launcher reads the typed fields
+// (StatusMessage::rollback_step, generation), never this text.
 std::string rolled_back_message(std::uint64_t step, std::int32_t generation);
 
 }  // namespace mechsim::cosim
