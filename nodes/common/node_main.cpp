@@ -91,6 +91,8 @@ int node_main(const char* node_type, int argc, char** argv) {
     if (resume_option->count() > 0) options.resume_step = resume_step;
     options.generation = generation;
     options.lose_first_writes_after_resume = spec->lose_writes_after_resume;
+    options.checkpoint_pause_step = spec->checkpoint_pause_step;
+    options.checkpoint_pause_s = spec->checkpoint_pause;
     return cosim::run_node(plan, node_name, *participant, options);
   } catch (const config::ConfigError& e) {
     std::cerr << e.what() << "\n";

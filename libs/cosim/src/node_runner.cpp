@@ -137,7 +137,7 @@ void NodeLoop::add_observers() {
   if (scene_.checkpointing() && !dir.empty() && scene_.faults.checkpoint_every > 0)
     observers_.push_back(std::make_unique<CheckpointObserver>(
         dir, name_, scene_.faults.checkpoint_every, checkpoints_to_keep(scene_.faults.checkpoint_every, plan_.nodes().size()),
-        [this] { return checkpoint_now(); }));
+        [this] { return checkpoint_now(); }, options_.checkpoint_pause_step, options_.checkpoint_pause_s));
 }
 
 int NodeLoop::run() {

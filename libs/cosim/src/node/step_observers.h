@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "mechsim/cosim/output_log.h"
@@ -61,8 +62,11 @@ class StatusObserver final : public StepObserver {
 // of the state `take` returns (the stepper, the guard and every observer's part).
 class CheckpointObserver final : public StepObserver {
  public:
-  CheckpointObserver(std::string run_dir, std::string node, long every, int keep, std::function<NodeCheckpoint()> take)
-      : run_dir_(std::move(run_dir)), node_(std::move(node)), every_(every), keep_(keep), take_(std::move(take)) {}
+  // pause_step, pause_s: the test seam of NodeRunOptions::checkpoint_pause_step.
+  CheckpointObserver(std::string run_dir, std::string node, long every, int keep, std::function<NodeCheckpoint()> take,
+                     std::optional<std::uint64_t> pause_step = std::nullopt, double pause_s = 0.0)
+      : run_dir_(std::move(run_dir)), node_(std::move(node)), every_(every), keep_(keep), take_(std::move(take)),
+        pause_step_(pause_step), pause_s_(pause_s) {}
   void step_completed(const CompletedStep& s) override;
 
  private:
@@ -70,6 +74,8 @@ class CheckpointObserver final : public StepObserver {
   long every_;
   int keep_;
   std::function<NodeCheckpoint()> take_;
+  std::optional<std::uint64_t> pause_step_;
+  double pause_s_;
 };
 
 }  // namespace mechsim::cosim

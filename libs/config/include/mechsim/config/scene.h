@@ -4,6 +4,7 @@
 // The grammar is documented in docs/scenes.md.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -91,10 +92,13 @@ struct ParticipantSpec {
   SolverSpec solver;
   ProcessRealtimeSpec process_realtime;  // the scene's realtime settings with this participant's over them
   bool restart = false;  // restarted after a crash (faults.restart, or the participant's own restart:)
-  // `testing: {lose_writes_after_resume: true}`: a seam for the test suite, never for a real
-  // run (tests/integration/restart_test.cpp): the node leaves out its first writes after a
-  // resume, as a partner that had not yet matched its writers would miss them.
+  // `testing:` seams for the test suite, never for a real run (tests/integration/restart_test.cpp):
+  // lose_writes_after_resume: true, the node leaves out its first writes after a resume, as
+  // a partner that had not yet matched its writers would miss them; checkpoint_pause_step: K
+  // with checkpoint_pause: 3 s, it stops that long halfway through writing its checkpoint of K.
   bool lose_writes_after_resume = false;
+  std::optional<std::uint64_t> checkpoint_pause_step;
+  double checkpoint_pause = 0.0;  // s
   ConfigNode params;   // type-specific, validated by the node type
   std::string key_path;  // "participants.cam" for error messages
 };

@@ -27,7 +27,10 @@ std::string checkpoint_path(const std::string& run_dir, const std::string& node,
 
 // Writes atomically (temporary file, rename), then removes all but the newest
 // `keep` checkpoints of the node. Throws std::runtime_error naming the file.
-void write_checkpoint(const std::string& run_dir, const std::string& node, const NodeCheckpoint& checkpoint, int keep = 3);
+// pause_halfway_s: a test seam (restart_test kills the node there): stop this long halfway
+// through the temporary file, unless a killed writer's temporary file was left.
+void write_checkpoint(const std::string& run_dir, const std::string& node, const NodeCheckpoint& checkpoint, int keep = 3,
+                      double pause_halfway_s = 0.0);
 
 // Throws std::runtime_error naming the file when it is missing, of another node, or damaged.
 NodeCheckpoint read_checkpoint(const std::string& run_dir, const std::string& node, std::uint64_t step);

@@ -30,6 +30,10 @@ struct NodeRunOptions {
   // out its first writes after a resume (the restored step's sample and the first
   // prediction), as a partner that had not yet matched its writers would miss them.
   bool lose_first_writes_after_resume = false;
+  // Test seam (restart_test; `testing.checkpoint_pause_step`, `testing.checkpoint_pause`): the
+  // node stops this long halfway through writing its checkpoint of this step.
+  std::optional<std::uint64_t> checkpoint_pause_step;
+  double checkpoint_pause_s = 0.0;
 };
 
 // Runs the node to the end of the scene. Returns the process exit code: 0 done, 1 failed,
