@@ -39,7 +39,7 @@ void apply_realtime(const config::Scene& scene, const config::ParticipantSpec& s
   // Real-time mode only (a lock-step run of FIFO nodes flat out would starve the rest of
   // the machine), and before the DDS participant exists, so that the vendor's threads
   // inherit the policy.
-  const bool paced = scene.mode == "realtime";
+  const bool paced = scene.mode == config::RunMode::realtime;
   const cosim::AppliedRealtime applied = paced ? cosim::apply_process_realtime(spec.process_realtime) : cosim::AppliedRealtime{};
   if (paced && spec.process_realtime.any()) {
     std::printf("process: %s\n", applied.describe().c_str());
@@ -108,6 +108,9 @@ int node_main(const char* node_type, int argc, char** argv) {
     options.stop_requested = &g_stop;
     if (resume_option->count() > 0) options.resume_step = resume_step;
     options.generation = generation;
+    options.lose_first_writes_after_resume = spec->lose_writes_after_resume;
+    options.checkpoint_pause_step = spec->checkpoint_pause_step;
+    options.checkpoint_pause_s = spec->checkpoint_pause;
     return cosim::run_node(*plan, node_name, *participant, options);
   } catch (const config::ConfigError& e) {
     std::cerr << e.what() << "\n";

@@ -175,6 +175,11 @@ TEST_P(Seam, ControlReachesALateJoinerAndStatusRoundTrips) {
   s.last_order = 5;
   s.missed_deadlines = 3;
   s.message = "error: " + std::string(300, 'e');
+  // The typed fields the launcher acts on (the message is for people only).
+  s.rollback_step = 3000000000LL;
+  s.generation = 2;
+  s.warning = transport::NodeWarning::cannot_keep_up;
+  s.error = transport::NodeError::partner_unreachable;
   std::optional<transport::StatusMessage> got;
   // BEST_EFFORT: repeat until one arrives (a heartbeat, as the nodes send it).
   ASSERT_TRUE(wait_until(*a_, [&] {
@@ -188,6 +193,10 @@ TEST_P(Seam, ControlReachesALateJoinerAndStatusRoundTrips) {
   EXPECT_EQ(got->last_order, 5);
   EXPECT_EQ(got->missed_deadlines, 3);
   EXPECT_EQ(got->message, s.message.substr(0, 256));
+  EXPECT_EQ(got->rollback_step, 3000000000LL);
+  EXPECT_EQ(got->generation, 2);
+  EXPECT_EQ(got->warning, transport::NodeWarning::cannot_keep_up);
+  EXPECT_EQ(got->error, transport::NodeError::partner_unreachable);
 }
 
 TEST_P(Seam, WaitReturnsOnDataOnWakeAndOnTimeout) {

@@ -111,19 +111,16 @@ class Restart : public RunFolderTest {
     return {};
   }
   // nc_slide_loop_1ms for 1 s, undisturbed ("plain", waited for), then again ("killed",
-  // returned running) with restart on, a checkpoint every 100 steps, `more` arguments and
-  // the test hook `hook` = `value` in the environment of its launcher and nodes.
-  pid_t run_plain_then_start_killable(const std::vector<std::string>& more, const char* hook, const char* value) {
+  // returned running) with restart on, a checkpoint every 100 steps and `more` arguments
+  // (a participant's `testing:` seam among them).
+  pid_t run_plain_then_start_killable(const std::vector<std::string>& more) {
     const std::vector<std::string> extra{"--end", "1 s"};
     CommandResult plain = run(launch_args(scene_path("nc_slide_loop_1ms.yaml"), "plain", extra), log("plain"), 120);
     EXPECT_EQ(plain.exit_code, 0) << plain.output;
     std::vector<std::string> args = extra;
     args.insert(args.end(), {"--set", "faults.restart=on_failure", "--set", "faults.checkpoint_every=100"});
     args.insert(args.end(), more.begin(), more.end());
-    ::setenv(hook, value, 1);  // inherited by the launcher and its nodes
-    const pid_t launcher = spawn(launch_args(scene_path("nc_slide_loop_1ms.yaml"), "killed", args), log("killed"));
-    ::unsetenv(hook);
-    return launcher;
+    return spawn(launch_args(scene_path("nc_slide_loop_1ms.yaml"), "killed", args), log("killed"));
   }
   // Every node's output and events files of two runs, byte for byte.
   void expect_identical_outputs(const fs::path& a, const fs::path& b, const std::vector<std::string>& nodes) {
@@ -215,7 +212,8 @@ TEST_F(Restart, PressLineSurvivesFiveKillsByteIdentical) {
 // rolls back to the newest one every node holds completely.
 TEST_F(Restart, AKillDuringACheckpointRollsBackToThePreviousOne) {
   // Recorded too: the recording keeps the first copy of each step (docs/faults.md, 'Recording').
-  const pid_t launcher = run_plain_then_start_killable({"--set", "record=true"}, "MECHSIM_TEST_CHECKPOINT_PAUSE", "slide:300:3");
+  const pid_t launcher = run_plain_then_start_killable({"--set", "record=true", "--set", "participants.slide.testing.checkpoint_pause_step=300",
+                                                       "--set", "participants.slide.testing.checkpoint_pause=3 s"});
   StopOnExit stop{launcher};
   ASSERT_FALSE(HasFailure());
   const fs::path run = wait_for_run_folder("killed");
@@ -250,7 +248,7 @@ TEST_F(Restart, AKillDuringACheckpointRollsBackToThePreviousOne) {
 // here: tacho leaves out its first writes after the resume; the nodes that then wait send
 // what they wrote since the rollback again, and the run completes byte-identical.
 TEST_F(Restart, SamplesLostAtTheResumeAreSentAgain) {
-  const pid_t launcher = run_plain_then_start_killable({}, "MECHSIM_TEST_LOSE_RESTORED_SAMPLE", "tacho");
+  const pid_t launcher = run_plain_then_start_killable({"--set", "participants.tacho.testing.lose_writes_after_resume=true"});
   StopOnExit stop{launcher};
   ASSERT_FALSE(HasFailure());
   const fs::path run = wait_for_run_folder("killed");

@@ -174,7 +174,7 @@ void Agent::start_node(const transport::AgentMessage& m) {
     transport::UnicastNetwork network{request.value("address", ""), request.value("peers", std::vector<std::string>{}),
                                       request.value("lease_s", 5.0)};
     // A cut the run is meant to survive must not make this agent stop its nodes either.
-    run.heartbeat_timeout_s = std::max(opt_.heartbeat_timeout_s, request.value("partition_grace_s", 0.0) + 1.0);
+    run.heartbeat_timeout_s = std::max(opt_.heartbeat_timeout_s, config::fault_timings(request.value("partition_grace_s", 0.0)).agent_timeout);
     if (network.address.empty() || addresses_.count(network.address) == 0)
       return refuse("the request names address '" + network.address + "', which is not one of this host's");
     const std::vector<std::string> env = hostrun::write_unicast_dds_files((run.folder / "dds").string(), network);

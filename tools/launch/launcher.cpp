@@ -51,7 +51,7 @@ void on_interrupt(int sig) { g_interrupt.store(sig); }
 
 // The DDS lease of a multi-host run: a cut shorter than the partition grace must not make
 // the participants forget each other (what was written meanwhile would be lost for good).
-double lease_for(const config::Scene& scene) { return scene.faults.partition_grace + 3.0; }
+double lease_for(const config::Scene& scene) { return config::fault_timings(scene).dds_lease; }
 
 // The executable of a process group's process (nodes/node_group): its nodes as threads.
 constexpr const char* kGroupExecutable = "node_group";
@@ -114,7 +114,7 @@ void Run::print_progress(const cosim::NodeWatches& watches, double since_start, 
   const double rate = since_start > 0 ? static_cast<double>(step) / since_start : 0.0;
   const double rtf = since_start > 0 ? (t - scene_.time.start) / since_start : 0.0;
   std::string realtime;
-  if (scene_.mode == "realtime") {
+  if (scene_.mode == config::RunMode::realtime) {
     long long missed = 0;
     double late = 0, p99 = 0;
     for (const auto& [name, w] : watches) {
@@ -196,12 +196,12 @@ cosim::SupervisedRun Run::run_nodes() {
   o.run_dir = run_dir_;
   o.ready_timeout_s = opt_.ready_timeout_s;
   o.hang_timeout_s = scene_.hang_timeout;
-  o.partition_grace_s = scene_.faults.partition_grace;
+  o.fault_timings = config::fault_timings(scene_);
   o.restart_limit = static_cast<int>(scene_.faults.restart_limit);
   o.checkpoint_every = scene_.faults.checkpoint_every;
   for (const auto& p : scene_.participants)
     if (p.restart) o.restartable.push_back(p.name);
-  const bool realtime = scene_.mode == "realtime";
+  const bool realtime = scene_.mode == config::RunMode::realtime;
   o.start = transport::ControlMessage{run_id_, transport::ControlCommand::start, scene_.time.end, scene_.time.step,
                                       realtime ? transport::RunMode::realtime : transport::RunMode::lockstep, scene_.rtf, 0, 0, 0, {}};
   o.not_ready_hint = " (see their logs in " + run_dir_ + ")";

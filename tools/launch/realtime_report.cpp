@@ -28,7 +28,7 @@ json read_json(const std::string& path) {
 
 std::vector<std::string> realtime_rights_problems(const config::Scene& scene) {
   std::vector<std::string> problems;
-  if (scene.mode != "realtime") return problems;  // the nodes apply them in real-time mode only
+  if (scene.mode != config::RunMode::realtime) return problems;  // the nodes apply them in real-time mode only
   const cosim::ProcessRights rights = cosim::current_process_rights();
   std::set<std::string> seen;  // a scene-wide setting refused once, not once per participant
   for (const auto& p : scene.participants) {
@@ -62,7 +62,7 @@ json realtime_summary(const config::Scene& scene, const cosim::StepGrid& grid, c
   }
   return {{"rtf_requested", scene.rtf},
           {"warnings", warnings},
-          {"on_overrun", scene.realtime.on_overrun},
+          {"on_overrun", config::to_string(scene.realtime.on_overrun)},
           {"wait", scene.realtime.spin_wait ? "spin" : "blocking"},
           {"missed_deadlines", missed},
           {"lateness_p99_s", p99},

@@ -112,7 +112,7 @@ json summarise(const RunFacts& run, const cosim::SupervisedRun& out) {
     s["dds_security"] = run.scene.security_dir;
     s["dds_protection"] = run.scene.security_protection;
   }
-  s["mode"] = run.scene.mode;
+  s["mode"] = config::to_string(run.scene.mode);
   s["redundant_samples"] = run.scene.faults.redundant();
   if (run.scene.checkpointing()) s["restart"] = restart_summary(run);
   s["status"] = out.ok ? "ok" : "failed";
@@ -165,7 +165,7 @@ json summarise(const RunFacts& run, const cosim::SupervisedRun& out) {
   s["events"] = events;
   std::vector<std::string> node_names;
   for (const auto& node : run.plan.nodes()) node_names.push_back(node.name());
-  if (run.scene.mode == "realtime")
+  if (run.scene.mode == config::RunMode::realtime)
     s["realtime"] = realtime_summary(run.scene, *run.plan.grid(), node_names, run.run_dir, run.supervisor.warnings());
   s["process_realtime"] = process_settings_summary(node_names, run.run_dir);
   return s;

@@ -82,7 +82,7 @@ void add_check_command(CLI::App& app, int& exit_code) {
         if (node.cut)
           std::printf("  %12s <> %s (interface_jacobian, %d levels)\n", "", node.cut->partner_topic.c_str(), node.cut->levels);
         // Real-time process settings (applied in realtime mode only), and whether this user may.
-        if (const auto& rt = node.spec->process_realtime; rt.any() && scene.mode == "realtime") {
+        if (const auto& rt = node.spec->process_realtime; rt.any() && scene.mode == config::RunMode::realtime) {
           std::string cpus;
           for (int c : rt.cpus) cpus += (cpus.empty() ? "" : ",") + std::to_string(c);
           const std::string refusal = cosim::realtime_refusal(rt, cosim::current_process_rights());

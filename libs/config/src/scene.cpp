@@ -46,6 +46,12 @@ const HostSpec* Scene::find_host(const std::string& name) const {
   return nullptr;
 }
 
+FaultTimings fault_timings(double partition_grace) {
+  // The lease outlasts the grace by 3 s of discovery traffic; the agent outlasts it by 1 s,
+  // so the launcher, not a silent agent, ends a run whose link stays cut.
+  return {partition_grace, partition_grace / 2, partition_grace + 3.0, partition_grace + 1.0};
+}
+
 bool topic_selected(const std::vector<std::string>& names, const std::string& regex, const std::string& topic) {
   if (names.empty() && regex.empty()) return true;
   if (std::find(names.begin(), names.end(), topic) != names.end()) return true;
@@ -254,9 +260,9 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   if (!valid_name(scene.name)) root.child("scene").fail("expected a name of letters, digits and '_'");
   if (root.has("description")) scene.description = root.string("description");
   scene.time = parse_time(root.child("time"));
-  if (root.has("mode")) scene.mode = root.choice("mode", {"lockstep", "realtime"});
+  if (root.has("mode")) scene.mode = root.choice("mode", {"lockstep", "realtime"}) == "realtime" ? RunMode::realtime : RunMode::lockstep;
   // Real-time pacing publishes on a fixed period (an NC loop's sample time).
-  if (scene.mode == "realtime" && scene.time.adaptive)
+  if (scene.mode == RunMode::realtime && scene.time.adaptive)
     root.child("mode").fail("lockstep with time.step: adaptive (a real-time run keeps a fixed period: docs/accuracy.md)");
   if (root.has("rtf")) {
     scene.rtf = root.number("rtf");
@@ -265,7 +271,8 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   ProcessRealtimeSpec scene_process_realtime;
   if (auto rt = root.optional_child("realtime")) {
     rt->allow_only({"on_overrun", "wait", "spin_limit", "priority", "lock_memory", "cpus"});
-    scene.realtime.on_overrun = rt->choice_or("on_overrun", {"continue", "abort"}, "continue");
+    scene.realtime.on_overrun =
+        rt->choice_or("on_overrun", {"continue", "abort"}, "continue") == "abort" ? OverrunPolicy::abort : OverrunPolicy::keep_going;
     scene.realtime.spin_wait = rt->choice_or("wait", {"blocking", "spin"}, "blocking") == "spin";
     scene.realtime.spin_limit = rt->positive_quantity_or("spin_limit", dim::time, scene.realtime.spin_limit);
     scene_process_realtime = parse_process_realtime(*rt, scene_process_realtime);
@@ -341,9 +348,15 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   for (const std::string& name : participants.keys()) {
     ConfigNode p = participants.child(name);
     if (!valid_name(name)) p.fail("expected an instance name of letters, digits and '_'");
-    p.allow_only({"type", "params", "dds", "host", "process", "solver", "realtime", "restart", "fmu"});
+    p.allow_only({"type", "params", "dds", "host", "process", "solver", "realtime", "restart", "fmu", "testing"});
     ParticipantSpec spec;
     spec.name = name;
+    if (auto t = p.optional_child("testing")) {
+      t->allow_only({"lose_writes_after_resume", "checkpoint_pause_step", "checkpoint_pause"});
+      spec.lose_writes_after_resume = t->has("lose_writes_after_resume") && t->boolean("lose_writes_after_resume");
+      if (t->has("checkpoint_pause_step")) spec.checkpoint_pause_step = static_cast<std::uint64_t>(t->integer("checkpoint_pause_step"));
+      spec.checkpoint_pause = t->non_negative_quantity_or("checkpoint_pause", dim::time, 0.0);
+    }
     spec.type = p.string("type");
     spec.vendor = p.has("dds") ? p.choice("dds", {"cyclone", "fastdds"}) : scene.vendor;
     if (p.has("host")) {
@@ -366,7 +379,7 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
     spec.restart = (p.has("restart") ? p.choice("restart", {"never", "on_failure"}) : scene.faults.restart) == "on_failure";
     // Real-time pacing counts from the start command's wall time: a rolled-back run would
     // be late by the whole repeated stretch.
-    if (spec.restart && scene.mode == "realtime")
+    if (spec.restart && scene.mode == RunMode::realtime)
       (p.has("restart") ? p.child("restart") : root.child("faults").child("restart"))
           .fail("restart: on_failure is built for mode: lockstep only, not for a real-time run (docs/faults.md)");
     // A checkpoint holds a node's state at a step, not the agreed instants before it.

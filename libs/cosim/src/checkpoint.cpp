@@ -101,19 +101,6 @@ std::string encode(const std::string& node, const NodeCheckpoint& c) {
   return b.str();
 }
 
-// Test hook (tests/integration/restart_test.cpp): MECHSIM_TEST_CHECKPOINT_PAUSE=NODE:STEP:SECONDS
-// makes NODE stop for SECONDS halfway through writing its checkpoint of STEP, so that a
-// test can kill it there; once: not when the temporary file of a killed writer is left.
-void pause_if_asked(const std::string& node, std::uint64_t step, bool temp_was_left) {
-  const char* v = std::getenv("MECHSIM_TEST_CHECKPOINT_PAUSE");
-  if (!v || temp_was_left) return;
-  const std::string spec = v;
-  const auto a = spec.find(':'), b = spec.rfind(':');
-  if (a == std::string::npos || a == b) return;
-  if (spec.substr(0, a) != node || std::strtoull(spec.substr(a + 1, b - a - 1).c_str(), nullptr, 10) != step) return;
-  std::this_thread::sleep_for(std::chrono::duration<double>(std::strtod(spec.substr(b + 1).c_str(), nullptr)));
-}
-
 void write_all(int fd, const char* p, std::size_t n, const std::string& path) {
   while (n > 0) {
     const ssize_t w = ::write(fd, p, n);
@@ -141,7 +128,8 @@ std::string checkpoint_path(const std::string& run_dir, const std::string& node,
   return run_dir + "/checkpoints/" + node + "." + std::to_string(step) + ".ckpt";
 }
 
-void write_checkpoint(const std::string& run_dir, const std::string& node, const NodeCheckpoint& checkpoint, int keep) {
+void write_checkpoint(const std::string& run_dir, const std::string& node, const NodeCheckpoint& checkpoint, int keep,
+                      double pause_halfway_s) {
   const std::string path = checkpoint_path(run_dir, node, checkpoint.stepper.step);
   const std::string temp = path + ".tmp";
   std::error_code ec;
@@ -153,7 +141,8 @@ void write_checkpoint(const std::string& run_dir, const std::string& node, const
   try {
     const std::size_t half = bytes.size() / 2;
     write_all(fd, bytes.data(), half, temp);
-    pause_if_asked(node, checkpoint.stepper.step, temp_was_left);
+    // The test seam: once, not when the temporary file of a killed writer is left.
+    if (pause_halfway_s > 0 && !temp_was_left) std::this_thread::sleep_for(std::chrono::duration<double>(pause_halfway_s));
     write_all(fd, bytes.data() + half, bytes.size() - half, temp);
     // No fdatasync: what a restart survives is the death of a process, whose writes are in
     // the kernel's page cache and whose rename below is atomic; a crash of the machine ends

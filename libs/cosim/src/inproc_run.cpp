@@ -50,7 +50,7 @@ InprocRunResult run_inproc(const config::Scene& scene, const InprocRunOptions& o
   so.run_dir = options.run_dir;
   so.ready_timeout_s = options.ready_timeout_s;
   so.hang_timeout_s = scene.hang_timeout;
-  so.partition_grace_s = scene.faults.partition_grace;
+  so.fault_timings = config::fault_timings(scene);
   // In process the nodes step flat out: lock-step whatever the scene's mode.
   so.start = transport::ControlMessage{options.run_id, transport::ControlCommand::start, scene.time.end, scene.time.step,
                                        transport::RunMode::lockstep, scene.rtf, 0, 0, 0, {}};

@@ -29,12 +29,14 @@ void NodeHost::restart(const std::string& node, std::uint64_t, std::int32_t) {
 }
 
 bool is_rolled_back(const transport::StatusMessage& status, std::uint64_t step, std::int32_t generation) {
-  return status.state == transport::NodeState::ready && status.message == rolled_back_message(step, generation);
+  return status.back_at(step, generation);
 }
 
-bool is_cannot_keep_up_warning(const transport::StatusMessage& status) { return status.message.rfind("cannot keep up", 0) == 0; }
+bool is_cannot_keep_up_warning(const transport::StatusMessage& status) {
+  return status.warning == transport::NodeWarning::cannot_keep_up;
+}
 
-bool is_divergence(const std::string& message) { return message.find("diverged") != std::string::npos; }
+bool is_divergence(const transport::StatusMessage& status) { return transport::points_to_divergence(status.error); }
 
 Supervisor::Supervisor(transport::Participant& participant, transport::ControlWriter& control, transport::StatusReader& status,
                        std::vector<NodeHost*> hosts, SupervisorOptions options, SupervisorHooks hooks)
@@ -68,7 +70,8 @@ void Supervisor::fail(const std::string& node, const std::string& reason) {
   out_.ok = false;
   out_.failed_node = node;
   out_.reason = reason;
-  out_.diverged = is_divergence(reason);
+  const auto it = watch_.find(node);
+  out_.diverged = it != watch_.end() && it->second.seen && is_divergence(it->second.last);
   out_.failed_step = last_step_of(node);
 }
 
@@ -94,7 +97,7 @@ void Supervisor::take_status() {
     if (s->header.run_id != opt_.run_id) continue;
     auto it = watch_.find(s->node);
     if (it == watch_.end()) continue;
-    if (is_cannot_keep_up_warning(*s) && it->second.last.message != s->message) {
+    if (is_cannot_keep_up_warning(*s) && !is_cannot_keep_up_warning(it->second.last)) {
       const std::string warning = "node '" + s->node + "' " + s->message;
       say("warning: " + warning);
       warnings_.push_back(warning);
@@ -219,13 +222,13 @@ void Supervisor::watch_silence() {
   for (const auto& node : nodes_) {
     const NodeHost& host = host_of(node);
     const double silent = seconds_since(watch_[node].last_seen);
-    if (host.exited(node) || !host.remote(node) || silent <= opt_.partition_grace_s / 2) continue;
+    if (host.exited(node) || !host.remote(node) || silent <= opt_.fault_timings.silence_warning) continue;
     unreachable += (unreachable.empty() ? "" : ", ") + ("'" + node + "' " + host.placement(node));
-    if (silent > opt_.partition_grace_s && first.empty()) first = node;
+    if (silent > opt_.fault_timings.partition_grace && first.empty()) first = node;
   }
   if (!first.empty()) {
     char why[128];
-    std::snprintf(why, sizeof why, ": no status for more than %g s (faults.partition_grace; docs/faults.md)", opt_.partition_grace_s);
+    std::snprintf(why, sizeof why, ": no status for more than %g s (faults.partition_grace; docs/faults.md)", opt_.fault_timings.partition_grace);
     fail(first, "unreachable: node " + unreachable + why);
   }
   if (!out_.reason.empty()) return;

@@ -31,6 +31,11 @@ TEST(PlausibleSamples, AVoltageBeyondThePhysicalBoundStopsTheRunNamingFieldValue
             std::string::npos)
       << r.reason;
   EXPECT_NE(r.reason.find("outside [-1000, 1000]"), std::string::npos) << r.reason;
+  // Typed on the status (the launcher reads no text): the partner diverged or its data is
+  // corrupt, so a stable macro step is worth looking for.
+  for (const InprocNodeResult& n : r.nodes)
+    EXPECT_EQ(n.last.error, n.name == "tacho" ? transport::NodeError::implausible_input : transport::NodeError::none) << n.name;
+  EXPECT_TRUE(r.diverged);
   fs::remove_all(dir);
 }
 

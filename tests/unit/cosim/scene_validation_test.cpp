@@ -37,6 +37,34 @@ TEST(SceneValidation, TheShippedCamPressIsAccepted) {
   EXPECT_EQ(refusal(testing::read_file(testing::shipped_scene("cam_press.yaml"))), "");
 }
 
+// Settings parsed once into enums and timings (nothing downstream compares their words).
+TEST(SceneValidation, ModeOverrunAndFaultTimingsAreParsedOnce) {
+  const std::string shipped = testing::shipped_scene("nc_slide_loop.yaml");
+  const config::Scene plain = config::load_scene(shipped);
+  EXPECT_EQ(plain.mode, config::RunMode::lockstep);
+  EXPECT_EQ(plain.realtime.on_overrun, config::OverrunPolicy::keep_going);
+  const config::Scene rt = config::load_scene(shipped, {"mode=realtime", "realtime.on_overrun=abort", "faults.partition_grace=6 s"});
+  EXPECT_EQ(rt.mode, config::RunMode::realtime);
+  EXPECT_EQ(rt.realtime.on_overrun, config::OverrunPolicy::abort);
+  EXPECT_STREQ(config::to_string(rt.mode), "realtime");
+  EXPECT_STREQ(config::to_string(rt.realtime.on_overrun), "abort");
+  // docs/faults.md, 'Cut links': warning at grace / 2, lease grace + 3 s, agent grace + 1 s.
+  const config::FaultTimings t = config::fault_timings(rt);
+  EXPECT_EQ(t.partition_grace, 6.0);
+  EXPECT_EQ(t.silence_warning, 3.0);
+  EXPECT_EQ(t.dds_lease, 9.0);
+  EXPECT_EQ(t.agent_timeout, 7.0);
+  // The participants' test seams are read from the scene, and only the known ones.
+  const config::Scene seams = config::load_scene(shipped, {"participants.tacho.testing.lose_writes_after_resume=true",
+                                                           "participants.slide.testing.checkpoint_pause_step=300",
+                                                           "participants.slide.testing.checkpoint_pause=3 s"});
+  EXPECT_TRUE(seams.find_participant("tacho")->lose_writes_after_resume);
+  EXPECT_FALSE(seams.find_participant("slide")->lose_writes_after_resume);
+  EXPECT_EQ(seams.find_participant("slide")->checkpoint_pause_step, std::optional<std::uint64_t>(300));
+  EXPECT_EQ(seams.find_participant("slide")->checkpoint_pause, 3.0);
+  EXPECT_THROW(config::load_scene(shipped, {"participants.tacho.testing.lose_everything=true"}), config::ConfigError);
+}
+
 TEST(SceneValidation, UnknownKeys) {
   expect_refused(cam_press_with("mass: 25 kg", "masss: 25 kg"), "participants.follower.params", "unknown key 'masss'");
   expect_refused(cam_press_with("mode: lockstep", "mood: lockstep"), "mood", "unknown key");

@@ -90,8 +90,9 @@ TEST(CdrDecoder, StatusWithStringsAndIntegers) {
   // idl/status.idl, XCDR1 LE. node "follower" (length 9 with the NUL) at 24, chars 28..36;
   // state (long) at 40; wall_time at 48; five long longs 56..88; last_step_size 96;
   // last_order 104; lateness_max 112, lateness_p99 120, missed_deadlines 128, rtf_window
-  // 136; readers_matched (long) 144; message length at 148, chars from 152.
-  Buffer b(0x0001, 152 + 4, false);
+  // 136; readers_matched (long) 144; message length at 148, chars 152..155; rollback_step
+  // (long long) 160; generation 168, warning 172, error 176 (longs).
+  Buffer b(0x0001, 180, false);
   put_header(b);
   b.put_string(24, "follower");
   b.put<std::int32_t>(40, 2);
@@ -105,6 +106,10 @@ TEST(CdrDecoder, StatusWithStringsAndIntegers) {
   b.put<double>(136, 0.97);
   b.put<std::int32_t>(144, 4);
   b.put_string(148, "a\"b");
+  b.put<std::int64_t>(160, 300);
+  b.put<std::int32_t>(168, 2);
+  b.put<std::int32_t>(172, 1);
+  b.put<std::int32_t>(176, 4);
   const MessageLayout& l = *find_layout("mechsim::msg::Status");
   const DecodedSample s = decode_sample(b.bytes(), l);
   expect_header(s.header);
@@ -121,6 +126,10 @@ TEST(CdrDecoder, StatusWithStringsAndIntegers) {
   EXPECT_EQ(std::get<double>(s.values[l.field_index("rtf_window")]), 0.97);
   EXPECT_EQ(std::get<std::int64_t>(s.values[l.field_index("readers_matched")]), 4);
   EXPECT_EQ(std::get<std::string>(s.values[l.field_index("message")]), "a\"b");
+  EXPECT_EQ(std::get<std::int64_t>(s.values[l.field_index("rollback_step")]), 300);
+  EXPECT_EQ(std::get<std::int64_t>(s.values[l.field_index("generation")]), 2);
+  EXPECT_EQ(std::get<std::int64_t>(s.values[l.field_index("warning")]), 1);
+  EXPECT_EQ(std::get<std::int64_t>(s.values[l.field_index("error")]), 4);
 }
 
 TEST(CdrDecoder, OtherScalarKindsAlignToTheirSize) {

@@ -259,6 +259,10 @@ class CycloneStatusWriter final : public StatusWriter {
     s.rtf_window = m.rtf_window;
     s.readers_matched = m.readers_matched;
     copy_bounded(s.message, sizeof s.message, m.message);
+    s.rollback_step = m.rollback_step;
+    s.generation = m.generation;
+    s.warning = static_cast<std::int32_t>(m.warning);
+    s.error = static_cast<std::int32_t>(m.error);
     dds_write(writer_, &s);  // best effort: a lost heartbeat is harmless
   }
 
@@ -291,6 +295,10 @@ class CycloneStatusReader final : public StatusReader {
     m.rtf_window = s.rtf_window;
     m.readers_matched = s.readers_matched;
     m.message = s.message;
+    m.rollback_step = s.rollback_step;
+    m.generation = s.generation;
+    m.warning = static_cast<NodeWarning>(s.warning);
+    m.error = static_cast<NodeError>(s.error);
     return m;
   }
 

@@ -384,6 +384,10 @@ class FastStatusWriter final : public StatusWriter, Endpoint {
     s.rtf_window(m.rtf_window);
     s.readers_matched(m.readers_matched);
     s.message(message);
+    s.rollback_step(m.rollback_step);
+    s.generation(m.generation);
+    s.warning(static_cast<std::int32_t>(m.warning));
+    s.error(static_cast<std::int32_t>(m.error));
     writer_->write(&s);  // best effort: a lost heartbeat is harmless
   }
 
@@ -417,6 +421,10 @@ class FastStatusReader final : public StatusReader, Endpoint {
     m.rtf_window = s.rtf_window();
     m.readers_matched = s.readers_matched();
     m.message = s.message().to_string();
+    m.rollback_step = s.rollback_step();
+    m.generation = s.generation();
+    m.warning = static_cast<NodeWarning>(s.warning());
+    m.error = static_cast<NodeError>(s.error());
     return m;
   }
 

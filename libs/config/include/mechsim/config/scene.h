@@ -4,6 +4,7 @@
 // The grammar is documented in docs/scenes.md.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -94,6 +95,13 @@ struct ParticipantSpec {
   SolverSpec solver;
   ProcessRealtimeSpec process_realtime;  // the scene's realtime settings with this participant's over them
   bool restart = false;  // restarted after a crash (faults.restart, or the participant's own restart:)
+  // `testing:` seams for the test suite, never for a real run (tests/integration/restart_test.cpp):
+  // lose_writes_after_resume: true, the node leaves out its first writes after a resume, as
+  // a partner that had not yet matched its writers would miss them; checkpoint_pause_step: K
+  // with checkpoint_pause: 3 s, it stops that long halfway through writing its checkpoint of K.
+  bool lose_writes_after_resume = false;
+  std::optional<std::uint64_t> checkpoint_pause_step;
+  double checkpoint_pause = 0.0;  // s
   ConfigNode params;   // type-specific, validated by the node type
   // `fmu: {file, interface, step, parameters}`: an FMU plays this participant in place of
   // its node type's native block (libs/cosim fmu_participant.h, docs/fmi.md).
@@ -142,9 +150,17 @@ struct ReportSpec {
   std::vector<SignalRef> supplied, dissipated, stored;
 };
 
+// `mode:` lockstep (as fast as the nodes go) | realtime (paced to the wall clock).
+enum class RunMode { lockstep, realtime };
+// `realtime.on_overrun:` continue (count the misses) | abort (stop the run at the first one).
+enum class OverrunPolicy { keep_going, abort };
+// The words of the scene file, for summaries and messages.
+inline const char* to_string(RunMode m) { return m == RunMode::realtime ? "realtime" : "lockstep"; }
+inline const char* to_string(OverrunPolicy p) { return p == OverrunPolicy::abort ? "abort" : "continue"; }
+
 // Real-time mode (`mode: realtime`): pacing and what to do when a node falls behind.
 struct RealtimeSpec {
-  std::string on_overrun = "continue";  // continue (count misses) | abort (stop the run)
+  OverrunPolicy on_overrun = OverrunPolicy::keep_going;
   bool spin_wait = false;               // low-latency wait: spin with sched_yield before blocking
   double spin_limit = 200e-6;           // s of spinning per wait
 };
@@ -189,7 +205,7 @@ struct Scene {
   std::string name;
   std::string description;
   TimeSpec time;
-  std::string mode = "lockstep";  // lockstep | realtime
+  RunMode mode = RunMode::lockstep;
   double rtf = 1.0;
   RealtimeSpec realtime;
   std::string vendor = default_dds_vendor();  // scene-wide default
@@ -218,6 +234,17 @@ struct Scene {
   bool checkpointing() const;
   const HostSpec* find_host(const std::string& name) const;
 };
+
+// The timings one setting, faults.partition_grace, decides; the launcher, the agents and
+// the nodes all take them from here (docs/faults.md, 'Cut links').
+struct FaultTimings {
+  double partition_grace = 0;  // s: a node waiting longer for a partner's sample ends the run
+  double silence_warning = 0;  // s: the launcher names a remote node silent this long (grace / 2)
+  double dds_lease = 0;        // s: a multi-host run's DDS lease; a cut up to the grace loses no endpoint (grace + 3 s)
+  double agent_timeout = 0;    // s: an agent stops its nodes when the launcher is silent this long (grace + 1 s)
+};
+FaultTimings fault_timings(double partition_grace);
+inline FaultTimings fault_timings(const Scene& scene) { return fault_timings(scene.faults.partition_grace); }
 
 // Loads and validates the generic part of a scene. `overrides` are "dotted.key=value"
 // strings (from --set and the shortcut options) applied before validation.

@@ -27,7 +27,10 @@ std::string checkpoint_path(const std::string& run_dir, const std::string& node,
 
 // Writes atomically (temporary file, rename), then removes all but the newest
 // `keep` checkpoints of the node. Throws std::runtime_error naming the file.
-void write_checkpoint(const std::string& run_dir, const std::string& node, const NodeCheckpoint& checkpoint, int keep = 3);
+// pause_halfway_s: a test seam (restart_test kills the node there): stop this long halfway
+// through the temporary file, unless a killed writer's temporary file was left.
+void write_checkpoint(const std::string& run_dir, const std::string& node, const NodeCheckpoint& checkpoint, int keep = 3,
+                      double pause_halfway_s = 0.0);
 
 // Throws std::runtime_error naming the file when it is missing, of another node, or damaged.
 NodeCheckpoint read_checkpoint(const std::string& run_dir, const std::string& node, std::uint64_t step);
@@ -42,8 +45,9 @@ std::optional<std::uint64_t> common_checkpoint(const std::string& run_dir, const
 // held by the fastest (lock-step nodes differ by a few steps per node of the scene).
 int checkpoints_to_keep(long checkpoint_every, std::size_t nodes);
 
-// The status message of a node that holds the checkpoint of `step` and waits for resume:
-// the launcher resumes the run when every node says it for the rollback's generation.
+// The words of the status message, for people, of a node that holds the checkpoint of
+// `step` and waits for resume; the launcher reads the typed fields
+// (StatusMessage::rollback_step, generation), never this text.
 std::string rolled_back_message(std::uint64_t step, std::int32_t generation);
 
 }  // namespace mechsim::cosim

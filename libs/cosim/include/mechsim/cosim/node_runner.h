@@ -1,5 +1,6 @@
-// The transport loop of one node process: readiness, the start command, then the lock-step
-// protocol of NodeStepper over the transport seam, with status heartbeats to the launcher.
+// The transport loop of one node: readiness, the start command, then the lock-step protocol
+// of NodeStepper over the transport seam, with status heartbeats to the launcher. Its parts
+// live in src/node/; the call order of one step is in docs/node-loop.md.
 #pragma once
 
 #include <atomic>
@@ -25,6 +26,14 @@ struct NodeRunOptions {
   // its checkpoint of this step, in this generation, once the launcher sends resume.
   std::optional<std::uint64_t> resume_step;
   std::int32_t generation = 0;
+  // Test seam (restart_test; the scene's `testing.lose_writes_after_resume`): the node leaves
+  // out its first writes after a resume (the restored step's sample and the first
+  // prediction), as a partner that had not yet matched its writers would miss them.
+  bool lose_first_writes_after_resume = false;
+  // Test seam (restart_test; `testing.checkpoint_pause_step`, `testing.checkpoint_pause`): the
+  // node stops this long halfway through writing its checkpoint of this step.
+  std::optional<std::uint64_t> checkpoint_pause_step;
+  double checkpoint_pause_s = 0.0;
 };
 
 // Runs the node to the end of the scene. Returns the process exit code: 0 done, 1 failed,

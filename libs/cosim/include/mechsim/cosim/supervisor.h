@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "mechsim/config/scene.h"
 #include "mechsim/cosim/node_host.h"
 #include "mechsim/transport/messages.h"
 #include "mechsim/transport/participant.h"
@@ -62,7 +63,9 @@ struct SupervisorOptions {
   std::string run_dir;
   double ready_timeout_s = 30.0;
   double hang_timeout_s = 30.0;       // a local node silent this long hung
-  double partition_grace_s = 2.0;     // a remote node silent this long is unreachable
+  // From faults.partition_grace (config::fault_timings): a remote node silent for
+  // silence_warning is named, one silent for partition_grace is unreachable.
+  config::FaultTimings fault_timings = config::fault_timings(2.0);
   int restart_limit = 0;              // restarts per node
   std::uint64_t checkpoint_every = 0; // for the message when no checkpoint is held yet
   // The participants restarted after a crash (`restart`), where their host can restart them.
@@ -90,10 +93,10 @@ struct SupervisorHooks {
   std::function<void(const NodeWatches&, double since_start_s, bool final_line)> progress;
 };
 
-// The string checks of the status protocol, one predicate each.
+// What the typed status says (idl/status.idl), one predicate each.
 bool is_rolled_back(const transport::StatusMessage& status, std::uint64_t step, std::int32_t generation);
 bool is_cannot_keep_up_warning(const transport::StatusMessage& status);
-bool is_divergence(const std::string& message);
+bool is_divergence(const transport::StatusMessage& status);
 
 class Supervisor {
  public:

@@ -42,6 +42,21 @@ std::string guid_text(const unsigned char (&guid)[16]);
 enum class NodeState : std::int32_t { starting = 0, ready = 1, running = 2, done = 3, failed = 4 };
 const char* to_string(NodeState s);
 
+// A condition a running node reports without stopping (the message words it for people).
+enum class NodeWarning : std::int32_t { none = 0, cannot_keep_up = 1 };
+// Why a failed node stopped (the message words it for people).
+enum class NodeError : std::int32_t {
+  none = 0,
+  other = 1,               // anything not named below (bad input, a solver failure, ...)
+  diverged = 2,            // the node's own divergence guard
+  implausible_input = 3,   // a partner's sample outside its bounds: the partner diverged, or corrupt data
+  partner_unreachable = 4, // no sample for longer than faults.partition_grace
+  foreign_data = 5,        // a writer that does not belong to the run
+  missed_deadline = 6,     // real-time mode, realtime.on_overrun: abort
+};
+// An error that points to an unstable coupling, for which a stable macro step is sought.
+inline bool points_to_divergence(NodeError e) { return e == NodeError::diverged || e == NodeError::implausible_input; }
+
 struct StatusMessage {
   SampleHeader header;  // step and t of the last published step
   std::string node;     // instance name (at most 64 characters on the wire)
@@ -61,7 +76,16 @@ struct StatusMessage {
   // Readers matched with the node's data writer, tools' readers included: the launcher
   // starts a run once each node has matched every reader on the domain (docs/recording.md).
   std::int32_t readers_matched = 0;
-  std::string message;  // last error (at most 256 characters on the wire)
+  std::string message;  // for people: the last error or warning (at most 256 characters on the wire)
+  // Typed fields, what the launcher acts on (nothing in the protocol matches the message):
+  std::int64_t rollback_step = -1;  // back at the checkpoint of this step, awaiting resume; -1 none
+  std::int32_t generation = 0;      // the rollback generation the node is in
+  NodeWarning warning = NodeWarning::none;
+  NodeError error = NodeError::none;  // set with state failed
+  // Holds the checkpoint of `step` for the rollback of `generation` and waits for resume.
+  bool back_at(std::uint64_t step, std::int32_t gen) const {
+    return state == NodeState::ready && rollback_step == static_cast<std::int64_t>(step) && generation == gen;
+  }
 };
 
 // A message between a launcher and a host's `mechsim agent` (idl/agent.idl); `kind` and the
