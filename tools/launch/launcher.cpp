@@ -431,8 +431,8 @@ static void set_on_loaded_scene(config::Scene& scene, const std::string& overrid
   scene.root.set_override(key, value);
   if (key == "dds.vendor") {
     scene.vendor = value;
-  } else if (key == "faults.redundant_samples") {
-    scene.faults.redundant_samples = value;
+  } else if (key == "faults.redundant_samples" && value == "true") {
+    scene.faults.redundant_samples = config::RedundantSamples::always;
   } else {
     bool set = false;
     for (auto& p : scene.participants)
@@ -459,7 +459,8 @@ int launch(const LaunchOptions& options) {
     }
     hosts = plan_hosts(scene);
     // Across a network packets get lost: every sample goes twice (docs/faults.md).
-    if (hosts.multi_host && scene.faults.redundant_samples == "auto") set_on_loaded_scene(scene, "faults.redundant_samples=true");
+    if (hosts.multi_host && scene.faults.redundant_samples == config::RedundantSamples::automatic)
+      set_on_loaded_scene(scene, "faults.redundant_samples=true");
     plan.emplace(cosim::ScenePlan::build(scene));
     auto vendors = transport::available_vendors();
     for (const auto& p : scene.participants)

@@ -318,7 +318,12 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
     scene.faults.checkpoint_every = faults->integer_or("checkpoint_every", scene.faults.checkpoint_every);
     if (scene.faults.checkpoint_every < 1) faults->child("checkpoint_every").fail("expected a number of macro steps >= 1");
     scene.faults.partition_grace = faults->positive_quantity_or("partition_grace", dim::time, scene.faults.partition_grace);
-    if (faults->has("redundant_samples")) scene.faults.redundant_samples = faults->choice("redundant_samples", {"auto", "true", "false"});
+    if (faults->has("redundant_samples")) {
+      const std::string r = faults->choice("redundant_samples", {"auto", "true", "false"});
+      scene.faults.redundant_samples = r == "true"    ? RedundantSamples::always
+                                       : r == "false" ? RedundantSamples::never
+                                                      : RedundantSamples::automatic;
+    }
   }
   scene.design = root.optional_child("design");
   if (auto rec = root.optional_child("record")) scene.record = parse_record(*rec);

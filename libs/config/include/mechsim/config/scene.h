@@ -166,13 +166,19 @@ struct RealtimeSpec {
 };
 
 // `faults:` — what a run does about lost packets and cut links (docs/faults.md).
+// faults.redundant_samples as written: auto | true | false.
+enum class RedundantSamples { automatic, always, never };
+inline const char* to_string(RedundantSamples r) {
+  return r == RedundantSamples::always ? "true" : r == RedundantSamples::never ? "false" : "auto";
+}
+
 struct FaultsSpec {
   // Every data sample also goes out on a best-effort twin topic, and a reader takes
   // whichever copy comes first: a lost packet then costs nothing unless both are lost.
   // "auto": on for multi-host runs (the launcher writes the decision into the run's
   // resolved scene), off on one host, where loopback loses nothing and the copy costs time.
-  std::string redundant_samples = "auto";  // auto | true | false
-  bool redundant() const { return redundant_samples == "true"; }
+  RedundantSamples redundant_samples = RedundantSamples::automatic;
+  bool redundant() const { return redundant_samples == RedundantSamples::always; }
   // A partner silent for longer than this (a cut link, an unreachable host) ends the run,
   // naming it; a shorter cut only stalls the run, which then resumes unchanged.
   double partition_grace = 2.0;  // s
