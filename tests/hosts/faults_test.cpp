@@ -25,13 +25,7 @@ void PrintTo(const LossCase& c, std::ostream* os) { *os << c.scene << " on " << 
 class UnderLoss : public HostBed, public ::testing::WithParamInterface<LossCase> {};
 
 void expect_identical_outputs(const fs::path& a, const fs::path& b, const std::vector<std::string>& participants) {
-  for (const auto& p : participants) {
-    const std::string first = slurp((a / (p + ".outputs.bin")).string());
-    const std::string second = slurp((b / (p + ".outputs.bin")).string());
-    EXPECT_GT(first.size(), 1000u) << p;
-    EXPECT_TRUE(first == second) << p << ".outputs.bin differs from the undisturbed single-host run (" << first.size() << " vs "
-                                 << second.size() << " bytes)";
-  }
+  expect_identical_node_outputs(a, b, participants, "the undisturbed single-host run and this one");
 }
 
 TEST_P(UnderLoss, FivePercentLossOnEveryLinkLeavesTheOutputsByteIdentical) {

@@ -18,13 +18,12 @@
 #include <vector>
 
 #include "mechsim/transport/backends.h"
-#include "run_command.h"
+#include "run_fixture.h"  // kMechsim, run_command.h, expect_identical_node_outputs
 
 namespace mechsim::testing {
 
 namespace fs = std::filesystem;
 
-inline const std::string kMechsim = std::string(MECHSIM_BIN_DIR) + "/mechsim";
 inline const std::string kScenes = std::string(MECHSIM_SOURCE_DIR) + "/config/scenes/";
 inline const std::string kBedScript = std::string(MECHSIM_SOURCE_DIR) + "/tools/netns-hosts.sh";
 inline constexpr int kDomain = 7;  // inside the bed's namespaces nothing else shares it
@@ -69,18 +68,6 @@ inline fs::path only_run_folder(const fs::path& runs) {
   for (const auto& e : fs::directory_iterator(runs))
     if (e.is_directory()) found.push_back(e.path());
   return found.size() == 1 ? found[0] : fs::path();
-}
-
-// Bytes of <node>.outputs.bin in the run folder under `runs` so far (0 before it exists): a
-// node that runs beside the launcher shows the run's progress there while it goes on.
-inline std::uintmax_t output_bytes(const fs::path& runs, const std::string& node) {
-  std::error_code ec;
-  if (!fs::exists(runs, ec)) return 0;
-  for (const auto& e : fs::directory_iterator(runs, ec)) {
-    const auto size = fs::file_size(e.path() / (node + ".outputs.bin"), ec);
-    if (!ec) return size;
-  }
-  return 0;
 }
 
 // The bed and its agents, for one test: built in SetUp, removed in TearDown (and by the

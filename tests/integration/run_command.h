@@ -15,6 +15,18 @@
 
 namespace mechsim::testing {
 
+// Bytes of <node>.outputs.bin in the run folder under `runs` so far (0 before it exists): a
+// node that runs beside the launcher shows the run's progress there while it goes on.
+inline std::uintmax_t output_bytes(const std::filesystem::path& runs, const std::string& node) {
+  std::error_code ec;
+  if (!std::filesystem::exists(runs, ec)) return 0;
+  for (const auto& e : std::filesystem::directory_iterator(runs, ec)) {
+    const auto size = std::filesystem::file_size(e.path() / (node + ".outputs.bin"), ec);
+    if (!ec) return size;
+  }
+  return 0;
+}
+
 struct CommandResult {
   int exit_code = -1;      // -1 when killed by a signal or timed out
   bool timed_out = false;

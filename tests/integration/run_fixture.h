@@ -21,17 +21,25 @@ inline std::string scene_path(const std::string& name) {
   return std::string(MECHSIM_SOURCE_DIR) + "/config/scenes/" + name;
 }
 
-// The node outputs of two run folders are the same bytes, node by node, for every node of
-// `summary` (a launcher summary); `what` names the two runs in a failure.
+// The node outputs of two run folders are the same bytes, node by node (and not next to
+// empty: over 1000 bytes); `what` names the two runs in a failure.
+inline void expect_identical_node_outputs(const std::filesystem::path& a, const std::filesystem::path& b,
+                                          const std::vector<std::string>& nodes, const std::string& what) {
+  for (const auto& node : nodes) {
+    const std::string name = node + ".outputs.bin";
+    const std::string first = slurp((a / name).string()), second = slurp((b / name).string());
+    EXPECT_GT(first.size(), 1000u) << name;
+    EXPECT_TRUE(first == second) << name << " differs between " << what << " (" << first.size() << " vs " << second.size()
+                                 << " bytes)";
+  }
+}
+// The same for every node of `summary` (a launcher summary).
 inline void expect_identical_node_outputs(const std::filesystem::path& a, const std::filesystem::path& b,
                                           const nlohmann::json& summary, const std::string& what) {
   ASSERT_FALSE(summary.is_null());
-  for (const auto& [node, info] : summary["nodes"].items()) {
-    const std::string name = node + ".outputs.bin";
-    const std::string first = slurp((a / name).string());
-    EXPECT_GT(first.size(), 1000u) << name;
-    EXPECT_TRUE(first == slurp((b / name).string())) << name << " differs between " << what;
-  }
+  std::vector<std::string> nodes;
+  for (const auto& [node, info] : summary["nodes"].items()) nodes.push_back(node);
+  expect_identical_node_outputs(a, b, nodes, what);
 }
 
 class RunFolderTest : public ::testing::Test {
@@ -74,12 +82,7 @@ class RunFolderTest : public ::testing::Test {
                              pid_t alive = 0) const {
     const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
     while (std::chrono::steady_clock::now() < until) {
-      std::error_code ec;
-      if (std::filesystem::exists(dir_ / tag, ec))
-        for (const auto& e : std::filesystem::directory_iterator(dir_ / tag, ec)) {
-          const auto size = std::filesystem::file_size(e.path() / (node + ".outputs.bin"), ec);
-          if (!ec && size >= bytes) return true;
-        }
+      if (output_bytes(dir_ / tag, node) >= bytes) return true;
       if (alive > 0 && has_exited(alive)) return false;
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }

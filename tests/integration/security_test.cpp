@@ -77,12 +77,7 @@ class Security : public RunFolderTest {
     return launch_args(kScene, tag, a);
   }
   void expect_identical_outputs(const std::string& a, const std::string& b) {
-    for (const char* node : {"servo", "tacho", "slide"}) {
-      const std::string file = std::string(node) + ".outputs.bin";
-      const std::string first = slurp((run_folder(a) / file).string());
-      EXPECT_GT(first.size(), 1000u) << file;
-      EXPECT_TRUE(first == slurp((run_folder(b) / file).string())) << file << " differs between " << a << " and " << b;
-    }
+    expect_identical_node_outputs(run_folder(a), run_folder(b), std::vector<std::string>{"servo", "tacho", "slide"}, a + " and " + b);
   }
 
   // A secured run with an outsider beside it that goes on until the test stops it, whatever
