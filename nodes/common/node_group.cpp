@@ -78,8 +78,11 @@ int node_group_main(int argc, char** argv) {
     cosim::ThreadNodeHost threads(
         node_names,
         [&](const std::string& node) {
+          const config::ParticipantSpec& spec = *scene.find_participant(node);
+          cosim::NodeRunOptions own = options;  // each member's own test seams
+          apply_testing_seams(spec, own);
           return cosim::ThreadNodeHost::Parts{node_plan(scene, node, replay_of.count(node) ? replay_of[node] : ""),
-                                              transport::create_participant(scene.find_participant(node)->vendor, domain)};
+                                              transport::create_participant(spec.vendor, domain), std::move(own)};
         },
         options);
     threads.start_all();

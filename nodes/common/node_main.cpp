@@ -48,6 +48,12 @@ void apply_realtime(const config::Scene& scene, const config::ParticipantSpec& s
   }
 }
 
+void apply_testing_seams(const config::ParticipantSpec& spec, cosim::NodeRunOptions& options) {
+  options.lose_first_writes_after_resume = spec.lose_writes_after_resume;
+  options.checkpoint_pause_step = spec.checkpoint_pause_step;
+  options.checkpoint_pause_s = spec.checkpoint_pause;
+}
+
 void stop_on_signals() {
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
@@ -108,9 +114,7 @@ int node_main(const char* node_type, int argc, char** argv) {
     options.stop_requested = &g_stop;
     if (resume_option->count() > 0) options.resume_step = resume_step;
     options.generation = generation;
-    options.lose_first_writes_after_resume = spec->lose_writes_after_resume;
-    options.checkpoint_pause_step = spec->checkpoint_pause_step;
-    options.checkpoint_pause_s = spec->checkpoint_pause;
+    apply_testing_seams(*spec, options);
     return cosim::run_node(*plan, node_name, *participant, options);
   } catch (const config::ConfigError& e) {
     std::cerr << e.what() << "\n";

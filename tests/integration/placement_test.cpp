@@ -113,26 +113,32 @@ TEST_F(Placement, AKilledGroupProcessRestartsAsAWholeAndEndsByteIdentical) {
   for (auto& a : group_of(members, "all")) grouped.push_back(a);
   const json plain = launch("nc_slide_loop_1ms.yaml", "plain", grouped);
   ASSERT_FALSE(plain.is_null());
-  const auto full = fs::file_size(run_folder("plain") / "slide.outputs.bin");
   std::vector<std::string> args = grouped;
-  args.insert(args.end(), {"--set", "faults.restart=on_failure", "--set", "faults.checkpoint_every=50"});
+  // The slide holds the run while it writes its checkpoint of step 1000 (a third of the run:
+  // many checkpoints behind it, most of the run ahead); the group's process is killed then,
+  // however fast the machine is.
+  args.insert(args.end(), {"--set", "faults.restart=on_failure", "--set", "faults.checkpoint_every=50", "--set",
+                           "participants.slide.testing.checkpoint_pause_step=1000", "--set",
+                           "participants.slide.testing.checkpoint_pause=3 s"});
   const pid_t launcher = spawn(launch_args(scene_path("nc_slide_loop_1ms.yaml"), "killed", args), log("killed"));
-  // Past a third of the run (many checkpoints behind it, most of the run ahead), the group's
-  // process is killed.
-  ASSERT_TRUE(wait_for_output_bytes("killed", "slide", full / 3, 120, launcher)) << slurp(log("killed"));
+  StopOnExit stop{launcher};
+  const fs::path run = wait_for_run_folder("killed");
+  ASSERT_FALSE(run.empty()) << slurp(log("killed"));
+  ASSERT_TRUE(wait_for_path(run / "checkpoints" / "slide.1000.ckpt.tmp", 120)) << slurp(log("killed"));
   pid_t group = -1;
   for (pid_t p : processes_mentioning((dir_ / "killed").string()))
     if (slurp("/proc/" + std::to_string(p) + "/cmdline").find("node_group") != std::string::npos) group = p;
   ASSERT_GT(group, 0) << "no node_group process";
   ::kill(group, SIGKILL);
   CommandResult r = wait_for(launcher, log("killed"), 180);
+  stop.pid = -1;
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const json s = summary("killed");
   const json& restarts = s["restart"]["restarts"];
   ASSERT_EQ(restarts.size(), members.size()) << restarts.dump(1);
   for (const json& x : restarts) {
     EXPECT_EQ(x["exit"], "killed by signal 9 (Killed)");
-    EXPECT_EQ(x["rollback_step"].get<long>() % 50, 0);
+    EXPECT_EQ(x["rollback_step"], 950) << "the slide's half-written checkpoint of step 1000 must not be used";
   }
   expect_identical_node_outputs(run_folder("plain"), run_folder("killed"), plain, "an undisturbed run and one with its group killed");
 }

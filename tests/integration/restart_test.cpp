@@ -70,16 +70,6 @@ pid_t pid_once_past(const fs::path& runs, const fs::path& run, const std::string
   return -1;
 }
 
-// Stops a launcher the test leaves early (a failed assertion): SIGTERM stops its nodes.
-struct StopOnExit {
-  pid_t pid;
-  ~StopOnExit() {
-    if (pid <= 0) return;
-    ::kill(pid, SIGTERM);
-    wait_for(pid, "/dev/null", 15);
-  }
-};
-
 // Waits until the node's log says it resumed `times` times: the run goes on after a restart.
 bool wait_resumed(const fs::path& run, const std::string& node, int times) {
   const auto until = Clock::now() + std::chrono::seconds(60);
@@ -101,15 +91,6 @@ std::uint64_t seed() {
 class Restart : public RunFolderTest {
  protected:
   // The run folder once it exists (the launcher creates it before the nodes).
-  fs::path wait_for_run_folder(const std::string& tag) {
-    const auto until = Clock::now() + std::chrono::seconds(30);
-    while (Clock::now() < until) {
-      if (fs::exists(dir_ / tag))
-        for (const auto& e : fs::directory_iterator(dir_ / tag)) return e.path();
-      std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    }
-    return {};
-  }
   // nc_slide_loop_1ms for 1 s, undisturbed ("plain", waited for), then again ("killed",
   // returned running) with restart on, a checkpoint every 100 steps and `more` arguments
   // (a participant's `testing:` seam among them).
@@ -218,10 +199,7 @@ TEST_F(Restart, AKillDuringACheckpointRollsBackToThePreviousOne) {
   ASSERT_FALSE(HasFailure());
   const fs::path run = wait_for_run_folder("killed");
   ASSERT_FALSE(run.empty());
-  const fs::path temp = run / "checkpoints" / "slide.300.ckpt.tmp";
-  const auto until = Clock::now() + std::chrono::seconds(60);
-  while (!fs::exists(temp) && Clock::now() < until) std::this_thread::sleep_for(std::chrono::milliseconds(2));
-  ASSERT_TRUE(fs::exists(temp)) << slurp(log("killed"));
+  ASSERT_TRUE(wait_for_path(run / "checkpoints" / "slide.300.ckpt.tmp", 60)) << slurp(log("killed"));
   const pid_t slide = node_pid(dir_ / "killed", "slide");
   ASSERT_GT(slide, 0);
   ::kill(slide, SIGKILL);

@@ -78,6 +78,28 @@ inline CommandResult wait_for(pid_t pid, const std::string& log_path, double tim
   return r;
 }
 
+// Stops a launcher the test leaves early (a failed assertion): SIGTERM stops its nodes.
+// Set pid to -1 once the test waited for it.
+struct StopOnExit {
+  pid_t pid;
+  ~StopOnExit() {
+    if (pid <= 0) return;
+    ::kill(pid, SIGTERM);
+    wait_for(pid, "/dev/null", 15);
+  }
+};
+
+// Waits until `path` exists (the event a test needs, e.g. a checkpoint being written);
+// false after `timeout_s`, a guard against a hang and not a measurement.
+inline bool wait_for_path(const std::filesystem::path& path, double timeout_s) {
+  const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  while (!std::filesystem::exists(path)) {
+    if (std::chrono::steady_clock::now() >= until) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  return true;
+}
+
 inline CommandResult run(const std::vector<std::string>& argv, const std::string& log_path, double timeout_s = 120) {
   return wait_for(spawn(argv, log_path), log_path, timeout_s);
 }

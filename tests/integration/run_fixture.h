@@ -74,6 +74,16 @@ class RunFolderTest : public ::testing::Test {
     for (const auto& e : std::filesystem::directory_iterator(dir_ / tag)) return e.path();
     return {};
   }
+  // The run folder under <dir>/<tag> once the launcher made it; empty after 30 s.
+  std::filesystem::path wait_for_run_folder(const std::string& tag) const {
+    const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+    while (std::chrono::steady_clock::now() < until) {
+      std::error_code ec;
+      for (std::filesystem::directory_iterator it(dir_ / tag, ec), end; !ec && it != end;) return it->path();
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    return {};
+  }
   // Waits until <node>.outputs.bin in the run folder under <dir>/<tag> holds at least
   // `bytes` bytes (rows the node has written: the event a test needs, e.g. "the run is
   // stepping" or "it is past t"). False when `alive` (the launcher) ended first or after

@@ -87,7 +87,9 @@ void ThreadNodeHost::start_all() {
     slot->thread = std::thread([this, slot] {
       int code = 1;
       try {
-        code = run_node(*slot->parts.plan, slot->name, *slot->parts.participant, options_);
+        NodeRunOptions options = slot->parts.options.value_or(options_);
+        options.stop_requested = &stop_;
+        code = run_node(*slot->parts.plan, slot->name, *slot->parts.participant, options);
       } catch (const std::exception&) {
         code = 1;  // run_node reports its own errors; this is only a last resort
       }

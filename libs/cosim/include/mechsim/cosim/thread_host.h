@@ -10,6 +10,7 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <thread>
 
 #include "mechsim/cosim/node_host.h"
@@ -25,6 +26,9 @@ class ThreadNodeHost : public NodeHost {
   struct Parts {
     std::unique_ptr<ScenePlan> plan;
     std::unique_ptr<transport::Participant> participant;
+    // This node's own options (e.g. its test seams); none: the host's. Either way the
+    // node stops on this host's request_stop.
+    std::optional<NodeRunOptions> options = std::nullopt;
   };
   using MakeParts = std::function<Parts(const std::string& node)>;
   // `options` serve every node; stop_requested is this host's (request_stop).
