@@ -130,6 +130,34 @@ TEST_P(FmuParticipant, CoSimulationRunsLikeTheNativeSampledAmplifier) {
   }
 }
 
+// The adaptive macro step with the model-exchange FMU as the amplifier, in process: no
+// step is redone (the controller only shortens the next one), so the FMU's state is never
+// put back, and the FMU declares the native amplifier's feedthrough (the coupling-error
+// estimate reads it): the run takes the native scene's instants and gives its values.
+// Measured bit-identical node logs; 1e-6 of each signal's range is asked, as above.
+TEST_P(FmuParticipant, AdaptiveStepRunsLikeTheNativeAmplifier) {
+  const std::string fmu = test_fmu(std::string(GetParam()) + "_me");
+  const std::string path = scene_with_fmu(
+      scratch_, "fmu: {file: " + fmu + ", interface: model-exchange, " + kParameters + "}", "fmu_adaptive.yaml");
+  const std::vector<std::string> adaptive{"time.end=0.02 s", "time.step=adaptive", "time.tolerance=1e-4",
+                                          "time.min=1 us", "time.max=100 us"};
+  std::filesystem::create_directories(scratch_.path("fmu_run"));
+  std::filesystem::create_directories(scratch_.path("native_run"));
+  const auto with_fmu = cosim::run_inproc(config::load_scene(path, adaptive), {.run_dir = scratch_.path("fmu_run").string()});
+  ASSERT_TRUE(with_fmu.ok) << with_fmu.reason;
+  const auto native = cosim::run_inproc(config::load_scene(kScene, adaptive), {.run_dir = scratch_.path("native_run").string()});
+  ASSERT_TRUE(native.ok) << native.reason;
+  std::string where;
+  for (const char* node : {"servo", "tacho", "slide"}) {
+    const std::string log = std::string(node) + ".outputs.bin";
+    const auto a = cosim::read_output_log(scratch_.path("native_run/" + log).string());
+    const auto b = cosim::read_output_log(scratch_.path("fmu_run/" + log).string());
+    ASSERT_EQ(a.data.at(0), b.data.at(0)) << node << ": the runs took different instants";
+    EXPECT_GT(a.data.at(0).size(), 200u);  // adaptive: more than the 200 steps of max
+    EXPECT_LT(worst_difference(a, b, where), 1e-6) << node << ": " << where;
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(TestFmus, FmuParticipant, ::testing::Values("servo_amplifier_fmi2", "servo_amplifier_fmi3"));
 
 // Refused while the plan is built, naming the scene file, the key and what was expected.
@@ -200,20 +228,37 @@ TEST_F(FmuParticipantRefusals, UnitDifferentFromTheNativePort) {
       << what;
 }
 
-TEST_F(FmuParticipantRefusals, RestartAndAdaptiveStep) {
-  const std::string fmu = "fmu: {file: " + test_fmu("servo_amplifier_fmi2_me") + ", interface: model-exchange}";
-  std::string what = refusal(fmu + "\n    restart: on_failure");
-  EXPECT_NE(what.find("participants.servo.restart: expected restart: never for a participant played by an FMU"),
+// A rollback restores every node's checkpoint: an FMU that cannot save its state (the lag
+// declares neither flag) is refused when any participant may restart, naming the key that
+// asks for it and the missing flags; the servo amplifier FMU, which declares both, is not.
+TEST_F(FmuParticipantRefusals, RestartNeedsAnFmuThatSavesItsState) {
+  const std::string lag = "fmu: {file: " + test_fmu("lag_fmi2_cs") + "}";
+  std::string what = refusal(lag + "\n    restart: on_failure");
+  EXPECT_NE(what.find("participants.servo.restart: expected restart: never while participant 'servo' is played by an "
+                      "FMU that cannot save its state"),
             std::string::npos)
       << what;
-  const std::string path = scene_with_fmu(scratch_, fmu, "adaptive.yaml");
+  EXPECT_NE(what.find("does not declare canGetAndSetFMUstate and canSerializeFMUstate (its co-simulation interface)"),
+            std::string::npos)
+      << what;
+  // Another participant's restart rolls the FMU back as well.
+  const std::string path = scene_with_fmu(scratch_, "fmu: {file: " + test_fmu("lag_fmi3_me") + ", interface: model-exchange}",
+                                          "other.yaml");
   try {
-    cosim::ScenePlan::build(config::load_scene(path, {"time.step=adaptive", "time.tolerance=1e-3",
-                                                      "time.min=1 us", "time.max=100 us"}));
+    cosim::ScenePlan::build(config::load_scene(path, {"participants.slide.restart=on_failure"}));
     ADD_FAILURE() << "not refused";
   } catch (const config::ConfigError& e) {
     what = e.what();
-    EXPECT_NE(what.find("participants.servo.fmu: expected a fixed macro step"), std::string::npos) << what;
+    EXPECT_NE(what.find("participants.slide.restart: expected restart: never"), std::string::npos) << what;
+    EXPECT_NE(what.find("canGetAndSetFMUState and canSerializeFMUState (its model-exchange interface)"), std::string::npos)
+        << what;
+  }
+  for (const char* servo : {"servo_amplifier_fmi2_cs", "servo_amplifier_fmi3_me"}) {
+    const std::string ok = scene_with_fmu(scratch_, "fmu: {file: " + test_fmu(servo) + ", interface: " +
+                                                        (std::string(servo).ends_with("_me") ? "model-exchange" : "co-simulation") +
+                                                        ", " + kParameters + "}",
+                                          "ok.yaml");
+    EXPECT_NO_THROW(cosim::ScenePlan::build(config::load_scene(ok, {"faults.restart=on_failure"}))) << servo;
   }
 }
 
