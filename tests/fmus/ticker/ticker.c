@@ -1,7 +1,7 @@
 /* A model with time events and a discrete state: a counter n that steps up by one at every
  * t_k = t0 + k * period (k >= 1), scheduled as the FMU's next time event (nextEventTime),
  * and y integrating it, dy/dt = n, y(t0) = 0. With t0 = 0 and n = floor(t / period):
- *   y(t) = period^2 n (n - 1) / 2 + n (t - n period).
+ *   y(t) = period n (n - 1) / 2 + n (t - n period).
  * The counter is the FMU's own discrete state (not a continuous state): a checkpoint that
  * held only the continuous states would lose it. Value references: 0 y [s] output (the
  * state), 1 count (Integer output), 2 period [s] parameter, 3 next_tick [s] local,

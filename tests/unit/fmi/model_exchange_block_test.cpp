@@ -68,7 +68,7 @@ class BouncingBlock : public ::testing::TestWithParam<const char*> {};
 TEST_P(BouncingBlock, ImpactsFoundByTheIntegrator) {
   const auto archive = std::make_shared<const FmuArchive>(FmuLabel{test_fmu(GetParam()), "mass"});
   ModelExchangeBlock block(archive, {{"restitution", 0.8}}, 0.0, 2.0);
-  ASSERT_EQ(block.num_event_functions(), 1);
+  ASSERT_EQ(block.num_event_functions(), 2);  // its event indicator, then the time-event function
   EXPECT_EQ(block.state_names(), (std::vector<std::string>{"height", "velocity"}));
   std::vector<double> x(2);
   block.initial_state(0.0, x);
