@@ -131,7 +131,7 @@ class Fmi2Instance final : public FmuInstance {
 
   void do_step(double t, double h) override {
     log_.set_time(t);
-    check("fmi2DoStep", do_step_(component_, t, h, fmi2True));
+    check("fmi2DoStep", do_step_(component_, t, h, state_saved_ ? fmi2False : fmi2True));
     time_ = t + h;
   }
 
@@ -170,7 +170,8 @@ class Fmi2Instance final : public FmuInstance {
   }
   bool completed_integrator_step() override {
     fmi2Boolean enter_event = fmi2False, terminate = fmi2False;
-    check("fmi2CompletedIntegratorStep", completed_step_(component_, fmi2True, &enter_event, &terminate));
+    check("fmi2CompletedIntegratorStep",
+          completed_step_(component_, state_saved_ ? fmi2False : fmi2True, &enter_event, &terminate));
     return enter_event != fmi2False;
   }
 
@@ -183,6 +184,7 @@ class Fmi2Instance final : public FmuInstance {
     check("fmi2SerializedFMUstateSize", state_size_(component_, state, &size));
     std::vector<std::uint8_t> bytes(size);
     check("fmi2SerializeFMUstate", serialize_(component_, state, reinterpret_cast<fmi2Byte*>(bytes.data()), size));
+    state_saved_ = true;
     return bytes;
   }
   void restore_state(std::span<const std::uint8_t> bytes) override {
@@ -192,6 +194,7 @@ class Fmi2Instance final : public FmuInstance {
           deserialize_(component_, reinterpret_cast<const fmi2Byte*>(bytes.data()), bytes.size(), &state));
     const StateGuard guard{this, state};
     check("fmi2SetFMUstate", set_state_(component_, state));
+    state_saved_ = true;  // it may be set again (a second rollback to the same checkpoint)
   }
 
  private:

@@ -125,7 +125,7 @@ class Fmi3Instance final : public FmuInstance {
     log_.set_time(t);
     fmi3Boolean event_needed = false, terminate = false, early_return = false;
     fmi3Float64 last_time = t;
-    check("fmi3DoStep", do_step_(instance_, t, h, true, &event_needed, &terminate, &early_return, &last_time));
+    check("fmi3DoStep", do_step_(instance_, t, h, !state_saved_, &event_needed, &terminate, &early_return, &last_time));
     // Early return was not allowed at instantiation; an FMU that still stops short broke
     // the contract, and its outputs are not at t + h.
     if (early_return) log_.fail("fmi3DoStep", "an early return at t = " + std::to_string(last_time) + " s (not allowed)");
@@ -170,7 +170,7 @@ class Fmi3Instance final : public FmuInstance {
   }
   bool completed_integrator_step() override {
     fmi3Boolean enter_event = false, terminate = false;
-    check("fmi3CompletedIntegratorStep", completed_step_(instance_, true, &enter_event, &terminate));
+    check("fmi3CompletedIntegratorStep", completed_step_(instance_, !state_saved_, &enter_event, &terminate));
     return enter_event;
   }
 
@@ -183,6 +183,7 @@ class Fmi3Instance final : public FmuInstance {
     check("fmi3SerializedFMUStateSize", state_size_(instance_, state, &size));
     std::vector<std::uint8_t> bytes(size);
     check("fmi3SerializeFMUState", serialize_(instance_, state, bytes.data(), size));
+    state_saved_ = true;
     return bytes;
   }
   void restore_state(std::span<const std::uint8_t> bytes) override {
@@ -191,6 +192,7 @@ class Fmi3Instance final : public FmuInstance {
     check("fmi3DeserializeFMUState", deserialize_(instance_, bytes.data(), bytes.size(), &state));
     const StateGuard guard{this, state};
     check("fmi3SetFMUState", set_state_(instance_, state));
+    state_saved_ = true;  // it may be set again (a second rollback to the same checkpoint)
   }
 
  private:

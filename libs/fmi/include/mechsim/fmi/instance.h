@@ -100,6 +100,10 @@ class FmuInstance {
   FmuLabel label_;
   InterfaceKind kind_;
   std::string missing_state_;  // missing_state_capabilities of the description
+  // Once a state was saved (or set) it may be set again later (a rollback): the steps then tell the
+  // FMU that a state prior to their start may still be set (noSetFMUStatePriorToCurrentPoint
+  // false), so that it keeps what such a set needs.
+  bool state_saved_ = false;
   double time_ = 0.0;  // the FMU's time: after the last step, set_time or initialization
 };
 
