@@ -233,6 +233,28 @@ TEST_P(TickerBlock, ACheckpointHoldsTheDiscreteState) {
 
 INSTANTIATE_TEST_SUITE_P(TestFmus, TickerBlock, ::testing::Values("ticker_fmi2_me", "ticker_fmi3_me"));
 
+// A time event needs an integrator to land on it: the ticker's binary under a description
+// that declares no continuous state is refused when its first event iteration schedules one.
+TEST(TimeEvents, AnFmuWithoutStatesThatSchedulesOneIsRefused) {
+  test::ScratchFolder scratch;
+  std::vector<std::pair<std::string, std::string>> entries;
+  for (auto [name, content] : test::read_zip(test_fmu("ticker_fmi2_me"))) {
+    if (name == "modelDescription.xml") {
+      const std::string derivatives = R"(<Derivatives><Unknown index="5"/></Derivatives>)";
+      const auto at = content.find(derivatives);
+      if (at == std::string::npos) throw std::runtime_error("ticker fmi2.xml.in changed");
+      content.erase(at, derivatives.size());
+    }
+    entries.emplace_back(name, content);
+  }
+  const std::string file = scratch.path("stateless_ticker.fmu").string();
+  test::write_zip(file, entries);
+  const auto archive = std::make_shared<const FmuArchive>(FmuLabel{file, "p"});
+  const std::string what = refusal_text([&] { ModelExchangeBlock block(archive, {}, 0.0, 1.0); });
+  EXPECT_NE(what.find("(participant 'p'): schedules a time event (nextEventTime = 0.01"), std::string::npos) << what;
+  EXPECT_NE(what.find("but has no continuous states"), std::string::npos) << what;
+}
+
 class TickerCoSimulation : public ::testing::TestWithParam<const char*> {};
 
 // The co-simulation ticker: the FMU's own solver ends a substep on each time event. Stepped
