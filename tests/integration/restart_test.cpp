@@ -113,10 +113,12 @@ class Restart : public RunFolderTest {
       }
   }
 
-  // Launches `scene` undisturbed and with restart on, kills a random node at `kills` random
-  // steps of the second run, and checks that it completes byte-identical.
+  // Launches `scene` undisturbed and with restart on, kills a random node (of `victims`, by
+  // default of `nodes`) at `kills` random steps of the second run, and checks that it
+  // completes byte-identical.
   void kill_at_random_steps(const std::string& scene, const std::vector<std::string>& nodes, long steps,
-                            std::vector<std::string> extra, int kills) {
+                            std::vector<std::string> extra, int kills, std::vector<std::string> victims = {}) {
+    if (victims.empty()) victims = nodes;
     const std::uint64_t s = seed();
     std::cout << "restart test seed " << s << " (MECHSIM_TEST_SEED=" << s << " repeats it)" << std::endl;
     RecordProperty("seed", std::to_string(s));
@@ -131,7 +133,7 @@ class Restart : public RunFolderTest {
       for (long t : targets) apart = apart && std::labs(t - k) >= 100;
       if (apart) targets.insert(k);
     }
-    std::uniform_int_distribution<std::size_t> node_dist(0, nodes.size() - 1);
+    std::uniform_int_distribution<std::size_t> node_dist(0, victims.size() - 1);
 
     CommandResult plain = run(launch_args(scene_path(scene), "plain", extra), log("plain"), 180);
     ASSERT_EQ(plain.exit_code, 0) << plain.output;
@@ -146,7 +148,7 @@ class Restart : public RunFolderTest {
     std::vector<std::string> killed;
     std::map<std::string, int> restarts_of;
     for (long target : targets) {
-      const std::string node = nodes[node_dist(rng)];
+      const std::string node = victims[node_dist(rng)];
       const pid_t pid = pid_once_past(dir_ / "killed", run, node, target);
       ASSERT_GT(pid, 0) << "node " << node << " did not reach step " << target << "\n" << slurp(log("killed"));
       // The log grows in whole buffers (and at each checkpoint): a random pause puts the
@@ -187,6 +189,27 @@ TEST_F(Restart, NcSlideLoop1msSurvivesFiveKillsByteIdentical) {
 
 TEST_F(Restart, PressLineSurvivesFiveKillsByteIdentical) {
   kill_at_random_steps("press_line.yaml", {"cvt", "cam", "follower"}, 2000, {}, 5);
+}
+
+// The servo amplifier played by its test FMU (docs/fmi.md), which declares that it can get,
+// set and serialize its state: its checkpoints hold the FMU's serialized state. Killed, the
+// co-simulation FMU's node comes back in a new process that deserializes it; with the
+// model-exchange FMU the tacho is killed and the live FMU node rolls back in its process.
+// Either way the run ends byte-identical to an undisturbed run with the same FMU.
+TEST_F(Restart, AnFmuServoRollsBackByteIdentical) {
+  const std::string fmus = MECHSIM_TEST_FMU_DIR;
+  const auto with_fmu = [&](const std::string& stem, const std::string& interface) {
+    return std::vector<std::string>{"--end", "1 s", "--set", "participants.servo.fmu.file=" + fmus + "/" + stem + ".fmu",
+                                    "--set", "participants.servo.fmu.interface=" + interface,
+                                    "--set", "participants.servo.fmu.parameters.step_distance=0.1 mm"};
+  };
+  kill_at_random_steps("nc_slide_loop_1ms.yaml", {"servo", "tacho", "slide"}, 1000,
+                       with_fmu("servo_amplifier_fmi2_cs", "co-simulation"), 2, {"servo"});
+  ASSERT_FALSE(HasFailure());
+  fs::remove_all(dir_ / "plain");
+  fs::remove_all(dir_ / "killed");
+  kill_at_random_steps("nc_slide_loop_1ms.yaml", {"servo", "tacho", "slide"}, 1000,
+                       with_fmu("servo_amplifier_fmi3_me", "model-exchange"), 2, {"tacho"});
 }
 
 // A node killed while it writes a checkpoint: its previous checkpoint is whole, and the run

@@ -73,14 +73,6 @@ std::unique_ptr<models::Block> make_fmu_block(const config::Scene& scene, const 
   if (coupling)
     refuse(scene, key, "expected no coupling element at a participant played by an FMU (the cut's spring-damper "
                        "is evaluated by the native blocks)");
-  // A checkpoint does not hold the FMU's own state (fmiXGetFMUState is not used yet), so
-  // neither a rollback nor an adaptive step's retry can put the FMU back.
-  if (spec.restart)
-    refuse(scene, spec.key_path + ".restart",
-           "expected restart: never for a participant played by an FMU (its state is not checkpointed yet)");
-  if (scene.time.adaptive)
-    refuse(scene, key, "expected a fixed macro step (time.step) with a participant played by an FMU: an adaptive step "
-                       "retries steps, and the FMU's state is not checkpointed yet");
   // The file, relative to the scene file's folder.
   fs::path file = f.string("file");
   if (file.is_relative()) file = fs::path(scene.file).parent_path() / file;
@@ -96,6 +88,22 @@ std::unique_ptr<models::Block> make_fmu_block(const config::Scene& scene, const 
     refuse(scene, key + ".file", std::string("expected a usable FMU: ") + e.what());
   }
   const fmi::ModelDescription& md = archive->description();
+  // A rollback (any participant restarting) restores every node's checkpoint, which holds
+  // an FMU's state only when the FMU can get, set and serialize it. (An adaptive macro step
+  // redoes no step and lands on a co-simulation FMU's fixed step: it needs neither.)
+  if (const std::string missing = fmi::missing_state_capabilities(md, kind); !missing.empty() && scene.checkpointing()) {
+    std::string restarts = scene.faults.key_path + ".restart";
+    if (scene.faults.restart != "on_failure")
+      for (const auto& p : scene.participants)
+        if (p.restart) {
+          restarts = p.key_path + ".restart";
+          break;
+        }
+    refuse(scene, restarts,
+           "expected restart: never while participant '" + spec.name + "' is played by an FMU that cannot save its state: " +
+               "a rollback restores every node's checkpoint, and the FMU " + file.string() + " does not declare " +
+               missing + " (its " + std::string(fmi::to_string(kind)) + " interface)");
+  }
 
   // Parameters: each a quantity in the FMU variable's unit (a bare number: SI).
   std::map<std::string, double> parameters;

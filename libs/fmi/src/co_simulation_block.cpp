@@ -1,6 +1,7 @@
 #include "mechsim/fmi/co_simulation_block.h"
 
 #include "exchanged_variables.h"
+#include "saved_state.h"
 
 namespace mechsim::fmi {
 
@@ -15,6 +16,7 @@ CoSimulationBlock::CoSimulationBlock(std::shared_ptr<const FmuArchive> archive_i
   outputs_ = ports.outputs;
   for (const Variable* v : inputs_) declare_input(v->name, port_unit(*v), start_value(*v, archive.label()));
   for (const Variable* v : outputs_) declare_output(v->name, port_unit(*v));  // held: no feedthrough
+  can_save_state_ = missing_state_capabilities(archive.description(), InterfaceKind::co_simulation).empty();
   fmu_ = initialize(archive, InterfaceKind::co_simulation, parameters, t0, t_stop);
   held_.resize(outputs_.size());
   for (std::size_t i = 0; i < outputs_.size(); ++i) held_[i] = get_value(*fmu_, *outputs_[i]);
@@ -33,11 +35,28 @@ void CoSimulationBlock::discrete_update(double t, std::span<double>, std::span<c
   for (std::size_t i = 0; i < outputs_.size(); ++i) held_[i] = get_value(*fmu_, *outputs_[i]);
 }
 
+// Layout: the held outputs, sampled_once, the last sample instant, then the FMU's bytes.
+std::vector<double> CoSimulationBlock::save_discrete_state() const {
+  std::vector<double> saved = held_;
+  saved.push_back(sampled_once_ ? 1.0 : 0.0);
+  saved.push_back(last_sample_);
+  if (can_save_state_) append_bytes(saved, fmu_->save_state());
+  return saved;
+}
+
 void CoSimulationBlock::restore_discrete_state(std::span<const double> saved) {
-  // Only the held outputs: the FMU's own state is not restored (see the header).
-  if (saved.size() != held_.size())
-    throw FmuError(archive_->label(), "restore: expected " + std::to_string(held_.size()) + " held outputs");
-  held_.assign(saved.begin(), saved.end());
+  const std::size_t n = held_.size();
+  std::vector<std::uint8_t> bytes;
+  std::size_t used = 0;
+  if (saved.size() < n + 2 || !read_bytes(saved.subspan(n + 2), bytes, used) || n + 2 + used != saved.size()) {
+    // An FMU without the flags saved no state: say what it lacks, else the record is damaged.
+    if (!can_save_state_) fmu_->restore_state({});
+    throw FmuError(archive_->label(), "restore: the saved state is not one of this co-simulation block");
+  }
+  fmu_->restore_state(bytes);
+  held_.assign(saved.begin(), saved.begin() + static_cast<std::ptrdiff_t>(n));
+  sampled_once_ = saved[n] != 0.0;
+  last_sample_ = saved[n + 1];
 }
 
 }  // namespace mechsim::fmi

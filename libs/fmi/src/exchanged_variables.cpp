@@ -1,5 +1,6 @@
 #include "exchanged_variables.h"
 
+#include <algorithm>
 #include <cstdlib>
 
 namespace mechsim::fmi {
@@ -10,6 +11,20 @@ ExchangedVariables exchanged_variables(const ModelDescription& md) {
     if (v.type == ValueType::other) continue;
     if (v.causality == Causality::input) out.inputs.push_back(&v);
     if (v.causality == Causality::output) out.outputs.push_back(&v);
+  }
+  return out;
+}
+
+std::vector<int> feedthrough(const ModelDescription& md, const Variable& output,
+                             const std::vector<const Variable*>& inputs) {
+  const OutputDependencies* listed = md.find_output_dependencies(static_cast<int>(&output - md.variables.data()));
+  std::vector<int> out;
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    const int input = static_cast<int>(inputs[i] - md.variables.data());
+    bool depends = true;
+    if (listed && listed->dependencies)
+      depends = std::find(listed->dependencies->begin(), listed->dependencies->end(), input) != listed->dependencies->end();
+    if (depends) out.push_back(static_cast<int>(i));
   }
   return out;
 }

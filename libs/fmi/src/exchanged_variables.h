@@ -15,6 +15,11 @@ struct ExchangedVariables {
 };
 ExchangedVariables exchanged_variables(const ModelDescription& md);
 
+// The inputs (indices into `inputs`) that output `output` depends on directly, as the
+// description's <ModelStructure> dependencies say; every input where it does not say.
+std::vector<int> feedthrough(const ModelDescription& md, const Variable& output,
+                             const std::vector<const Variable*>& inputs);
+
 // The port unit of a variable ("1" when it has none) and an input's default (its start).
 std::string port_unit(const Variable& v);
 double start_value(const Variable& v, const FmuLabel& label);

@@ -72,6 +72,16 @@ class Fmi2Instance final : public FmuInstance {
       get_derivatives_ = library_.function<fmi2GetDerivativesTYPE>("fmi2GetDerivatives", own);
       get_indicators_ = library_.function<fmi2GetEventIndicatorsTYPE>("fmi2GetEventIndicators", own);
     }
+    missing_state_ = missing_state_capabilities(archive.description(), kind);
+    if (missing_state_.empty()) {
+      const std::string state = "FMI 2.0 FMU state (the FMU declares canGetAndSetFMUstate and canSerializeFMUstate)";
+      get_state_ = library_.function<fmi2GetFMUstateTYPE>("fmi2GetFMUstate", state);
+      set_state_ = library_.function<fmi2SetFMUstateTYPE>("fmi2SetFMUstate", state);
+      free_state_ = library_.function<fmi2FreeFMUstateTYPE>("fmi2FreeFMUstate", state);
+      state_size_ = library_.function<fmi2SerializedFMUstateSizeTYPE>("fmi2SerializedFMUstateSize", state);
+      serialize_ = library_.function<fmi2SerializeFMUstateTYPE>("fmi2SerializeFMUstate", state);
+      deserialize_ = library_.function<fmi2DeSerializeFMUstateTYPE>("fmi2DeSerializeFMUstate", state);
+    }
     callbacks_ = {log_message, std::calloc, std::free, nullptr, &log_};
     const std::string resources = archive.resource_location();
     component_ = instantiate_(instance_name.c_str(),
@@ -121,7 +131,7 @@ class Fmi2Instance final : public FmuInstance {
 
   void do_step(double t, double h) override {
     log_.set_time(t);
-    check("fmi2DoStep", do_step_(component_, t, h, fmi2True));
+    check("fmi2DoStep", do_step_(component_, t, h, state_saved_ ? fmi2False : fmi2True));
     time_ = t + h;
   }
 
@@ -160,11 +170,42 @@ class Fmi2Instance final : public FmuInstance {
   }
   bool completed_integrator_step() override {
     fmi2Boolean enter_event = fmi2False, terminate = fmi2False;
-    check("fmi2CompletedIntegratorStep", completed_step_(component_, fmi2True, &enter_event, &terminate));
+    check("fmi2CompletedIntegratorStep",
+          completed_step_(component_, state_saved_ ? fmi2False : fmi2True, &enter_event, &terminate));
     return enter_event != fmi2False;
   }
 
+  std::vector<std::uint8_t> save_state() override {
+    require_state_capability("save");
+    fmi2FMUstate state = nullptr;
+    check("fmi2GetFMUstate", get_state_(component_, &state));
+    const StateGuard guard{this, state};
+    std::size_t size = 0;
+    check("fmi2SerializedFMUstateSize", state_size_(component_, state, &size));
+    std::vector<std::uint8_t> bytes(size);
+    check("fmi2SerializeFMUstate", serialize_(component_, state, reinterpret_cast<fmi2Byte*>(bytes.data()), size));
+    state_saved_ = true;
+    return bytes;
+  }
+  void restore_state(std::span<const std::uint8_t> bytes) override {
+    require_state_capability("restore");
+    fmi2FMUstate state = nullptr;
+    check("fmi2DeSerializeFMUstate",
+          deserialize_(component_, reinterpret_cast<const fmi2Byte*>(bytes.data()), bytes.size(), &state));
+    const StateGuard guard{this, state};
+    check("fmi2SetFMUstate", set_state_(component_, state));
+    state_saved_ = true;  // it may be set again (a second rollback to the same checkpoint)
+  }
+
  private:
+  // Frees an FMU state however the call that used it ended.
+  struct StateGuard {
+    Fmi2Instance* self;
+    fmi2FMUstate state;
+    ~StateGuard() {
+      if (state != nullptr) self->free_state_(self->component_, &state);
+    }
+  };
   void check(const char* function, fmi2Status status) const {
     if (status == fmi2OK || status == fmi2Warning) return;
     log_.fail(function, status_name(status));
@@ -196,6 +237,12 @@ class Fmi2Instance final : public FmuInstance {
   fmi2GetContinuousStatesTYPE* get_states_ = nullptr;
   fmi2GetDerivativesTYPE* get_derivatives_ = nullptr;
   fmi2GetEventIndicatorsTYPE* get_indicators_ = nullptr;
+  fmi2GetFMUstateTYPE* get_state_ = nullptr;
+  fmi2SetFMUstateTYPE* set_state_ = nullptr;
+  fmi2FreeFMUstateTYPE* free_state_ = nullptr;
+  fmi2SerializedFMUstateSizeTYPE* state_size_ = nullptr;
+  fmi2SerializeFMUstateTYPE* serialize_ = nullptr;
+  fmi2DeSerializeFMUstateTYPE* deserialize_ = nullptr;
 };
 
 }  // namespace

@@ -46,6 +46,16 @@ class Fmi3Instance final : public FmuInstance {
     set_int32_ = library_.function<fmi3SetInt32TYPE>("fmi3SetInt32", common);
     get_boolean_ = library_.function<fmi3GetBooleanTYPE>("fmi3GetBoolean", common);
     set_boolean_ = library_.function<fmi3SetBooleanTYPE>("fmi3SetBoolean", common);
+    missing_state_ = missing_state_capabilities(archive.description(), kind);
+    if (missing_state_.empty()) {
+      const std::string state = "FMI 3.0 FMU state (the FMU declares canGetAndSetFMUState and canSerializeFMUState)";
+      get_state_ = library_.function<fmi3GetFMUStateTYPE>("fmi3GetFMUState", state);
+      set_state_ = library_.function<fmi3SetFMUStateTYPE>("fmi3SetFMUState", state);
+      free_state_ = library_.function<fmi3FreeFMUStateTYPE>("fmi3FreeFMUState", state);
+      state_size_ = library_.function<fmi3SerializedFMUStateSizeTYPE>("fmi3SerializedFMUStateSize", state);
+      serialize_ = library_.function<fmi3SerializeFMUStateTYPE>("fmi3SerializeFMUState", state);
+      deserialize_ = library_.function<fmi3DeserializeFMUStateTYPE>("fmi3DeserializeFMUState", state);
+    }
     const std::string token = archive.description().instantiation_token;
     const std::string resources = archive.resource_location();
     if (cs) {
@@ -115,7 +125,7 @@ class Fmi3Instance final : public FmuInstance {
     log_.set_time(t);
     fmi3Boolean event_needed = false, terminate = false, early_return = false;
     fmi3Float64 last_time = t;
-    check("fmi3DoStep", do_step_(instance_, t, h, true, &event_needed, &terminate, &early_return, &last_time));
+    check("fmi3DoStep", do_step_(instance_, t, h, !state_saved_, &event_needed, &terminate, &early_return, &last_time));
     // Early return was not allowed at instantiation; an FMU that still stops short broke
     // the contract, and its outputs are not at t + h.
     if (early_return) log_.fail("fmi3DoStep", "an early return at t = " + std::to_string(last_time) + " s (not allowed)");
@@ -160,11 +170,40 @@ class Fmi3Instance final : public FmuInstance {
   }
   bool completed_integrator_step() override {
     fmi3Boolean enter_event = false, terminate = false;
-    check("fmi3CompletedIntegratorStep", completed_step_(instance_, true, &enter_event, &terminate));
+    check("fmi3CompletedIntegratorStep", completed_step_(instance_, !state_saved_, &enter_event, &terminate));
     return enter_event;
   }
 
+  std::vector<std::uint8_t> save_state() override {
+    require_state_capability("save");
+    fmi3FMUState state = nullptr;
+    check("fmi3GetFMUState", get_state_(instance_, &state));
+    const StateGuard guard{this, state};
+    std::size_t size = 0;
+    check("fmi3SerializedFMUStateSize", state_size_(instance_, state, &size));
+    std::vector<std::uint8_t> bytes(size);
+    check("fmi3SerializeFMUState", serialize_(instance_, state, bytes.data(), size));
+    state_saved_ = true;
+    return bytes;
+  }
+  void restore_state(std::span<const std::uint8_t> bytes) override {
+    require_state_capability("restore");
+    fmi3FMUState state = nullptr;
+    check("fmi3DeserializeFMUState", deserialize_(instance_, bytes.data(), bytes.size(), &state));
+    const StateGuard guard{this, state};
+    check("fmi3SetFMUState", set_state_(instance_, state));
+    state_saved_ = true;  // it may be set again (a second rollback to the same checkpoint)
+  }
+
  private:
+  // Frees an FMU state however the call that used it ended.
+  struct StateGuard {
+    Fmi3Instance* self;
+    fmi3FMUState state;
+    ~StateGuard() {
+      if (state != nullptr) self->free_state_(self->instance_, &state);
+    }
+  };
   void check(const char* function, fmi3Status status) const {
     if (status == fmi3OK || status == fmi3Warning) return;
     log_.fail(function, status_name(status));
@@ -193,6 +232,12 @@ class Fmi3Instance final : public FmuInstance {
   fmi3GetContinuousStatesTYPE* get_states_ = nullptr;
   fmi3GetContinuousStateDerivativesTYPE* get_derivatives_ = nullptr;
   fmi3GetEventIndicatorsTYPE* get_indicators_ = nullptr;
+  fmi3GetFMUStateTYPE* get_state_ = nullptr;
+  fmi3SetFMUStateTYPE* set_state_ = nullptr;
+  fmi3FreeFMUStateTYPE* free_state_ = nullptr;
+  fmi3SerializedFMUStateSizeTYPE* state_size_ = nullptr;
+  fmi3SerializeFMUStateTYPE* serialize_ = nullptr;
+  fmi3DeserializeFMUStateTYPE* deserialize_ = nullptr;
 };
 
 }  // namespace

@@ -22,4 +22,21 @@ double FmuInstance::get_finite_real(const Variable& v) {
                              when + " s");
 }
 
+std::string missing_state_capabilities(const ModelDescription& md, InterfaceKind kind) {
+  const Interface* i = md.find_interface(kind);
+  if (i == nullptr) return "";
+  const bool v2 = md.version == FmiVersion::fmi2;
+  std::string missing;
+  if (!i->can_get_and_set_state) missing = v2 ? "canGetAndSetFMUstate" : "canGetAndSetFMUState";
+  if (!i->can_serialize_state)
+    missing += std::string(missing.empty() ? "" : " and ") + (v2 ? "canSerializeFMUstate" : "canSerializeFMUState");
+  return missing;
+}
+
+void FmuInstance::require_state_capability(const char* what) const {
+  if (!missing_state_.empty())
+    throw FmuError(label_, std::string("cannot ") + what + " its state: its " + std::string(to_string(kind_)) +
+                               " interface does not declare " + missing_state_);
+}
+
 }  // namespace mechsim::fmi

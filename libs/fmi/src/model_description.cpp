@@ -3,6 +3,7 @@
 #include "mechsim/fmi/model_description.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cstdlib>
 
 #include <pugixml.hpp>
@@ -58,6 +59,11 @@ const Variable* ModelDescription::find_variable(std::string_view name) const {
 const UnitDefinition* ModelDescription::find_unit(std::string_view name) const {
   for (const auto& u : units)
     if (u.name == name) return &u;
+  return nullptr;
+}
+const OutputDependencies* ModelDescription::find_output_dependencies(int variable) const {
+  for (const auto& o : output_dependencies)
+    if (o.variable == variable) return &o;
   return nullptr;
 }
 
@@ -214,6 +220,43 @@ struct Parser {
     }
     md.number_of_continuous_states = static_cast<int>(md.state_variables.size());
     md.number_of_event_indicators = root.attribute("numberOfEventIndicators").as_int(0);
+    // <Outputs><Unknown index dependencies> (1-based indices into ModelVariables).
+    const auto variable_at = [&](long long index, const std::string& where) {
+      if (index < 1 || index > static_cast<long long>(md.variables.size()))
+        fail("<ModelStructure><Outputs>: " + where + " " + std::to_string(index) + " is not a ScalarVariable (1.." +
+             std::to_string(md.variables.size()) + ")");
+      return static_cast<int>(index - 1);
+    };
+    for (const auto& unknown : root.child("ModelStructure").child("Outputs").children("Unknown")) {
+      OutputDependencies o;
+      o.variable = variable_at(unknown.attribute("index").as_llong(0), "index");
+      if (const auto d = unknown.attribute("dependencies"))
+        o.dependencies = numbers(d.as_string(), [&](long long i) { return variable_at(i, "dependency"); });
+      md.output_dependencies.push_back(std::move(o));
+    }
+  }
+
+  // The whitespace-separated integers of an attribute, each mapped by `to_variable`.
+  template <typename F>
+  std::vector<int> numbers(const std::string& text, F to_variable) const {
+    std::vector<int> out;
+    std::size_t pos = 0;
+    while (pos < text.size()) {
+      if (std::isspace(static_cast<unsigned char>(text[pos]))) {
+        ++pos;
+        continue;
+      }
+      std::size_t used = 0;
+      long long value = 0;
+      try {
+        value = std::stoll(text.substr(pos), &used);
+      } catch (const std::exception&) {
+        fail("<ModelStructure>: dependencies=\"" + text + "\" is not a list of integers");
+      }
+      out.push_back(to_variable(value));
+      pos += used;
+    }
+    return out;
   }
 
   void read_variables_fmi3(const pugi::xml_node& root, ModelDescription& md) const {
@@ -259,6 +302,18 @@ struct Parser {
             derivative >= 0 ? index_of_reference(derivative_of[static_cast<std::size_t>(derivative)]) : -1);
       }
       if (name == "EventIndicator") ++md.number_of_event_indicators;
+      if (name == "Output") {
+        const auto variable = [&](long long vr, const std::string& where) {
+          const int i = index_of_reference(vr);
+          if (i < 0) fail("<ModelStructure><Output>: " + where + " " + std::to_string(vr) + " is no variable's valueReference");
+          return i;
+        };
+        OutputDependencies o;
+        o.variable = variable(n.attribute("valueReference").as_llong(-1), "valueReference");
+        if (const auto d = n.attribute("dependencies"))
+          o.dependencies = numbers(d.as_string(), [&](long long vr) { return variable(vr, "dependency"); });
+        md.output_dependencies.push_back(std::move(o));
+      }
     }
     md.number_of_continuous_states = static_cast<int>(md.state_variables.size());
   }

@@ -1,34 +1,36 @@
 #include "mechsim/fmi/model_exchange_block.h"
 
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
 #include "exchanged_variables.h"
+#include "saved_state.h"
 
 namespace mechsim::fmi {
 
 namespace {
 
-// Ends an event iteration: refuses what the block cannot honour.
-void check_update(const DiscreteUpdate& update, const FmuLabel& label, double t) {
-  if (update.terminate)
-    throw FmuError(label, "asked to terminate the simulation at t = " + std::to_string(t) + " s");
-  if (update.next_event_time_defined)
-    throw FmuError(label, "schedules a time event (nextEventTime = " + std::to_string(update.next_event_time) +
-                              " s); FMU time events are not supported yet");
+constexpr double kNone = std::numeric_limits<double>::infinity();
+
+std::string seconds(double t) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.17g s", t);
+  return text;
 }
 
 }  // namespace
 
 ModelExchangeBlock::ModelExchangeBlock(std::shared_ptr<const FmuArchive> archive_in, const std::map<std::string, double>& parameters,
                                        double t0, double t_stop)
-    : Block("fmu"), archive_(std::move(archive_in)) {
+    : Block("fmu"), archive_(std::move(archive_in)), next_time_event_(kNone) {
   const FmuArchive& archive = *archive_;
   const ModelDescription& md = archive.description();
   const ExchangedVariables ports = exchanged_variables(md);
   inputs_ = ports.inputs;
   outputs_ = ports.outputs;
   for (const Variable* v : inputs_) declare_input(v->name, port_unit(*v), start_value(*v, archive.label()));
-  std::vector<int> all_inputs(inputs_.size());
-  for (std::size_t i = 0; i < all_inputs.size(); ++i) all_inputs[i] = static_cast<int>(i);
-  for (const Variable* v : outputs_) declare_output(v->name, port_unit(*v), all_inputs);
+  for (const Variable* v : outputs_) declare_output(v->name, port_unit(*v), feedthrough(md, *v, inputs_));
   for (int i = 0; i < md.number_of_continuous_states; ++i) {
     const int v = md.state_variables[static_cast<std::size_t>(i)];
     if (v >= 0)
@@ -37,12 +39,29 @@ ModelExchangeBlock::ModelExchangeBlock(std::shared_ptr<const FmuArchive> archive
       declare_state("state[" + std::to_string(i) + "]", "");
   }
   num_indicators_ = md.number_of_event_indicators;
+  has_time_events_ = num_states() > 0;
+  can_save_state_ = missing_state_capabilities(md, InterfaceKind::model_exchange).empty();
 
   fmu_ = initialize(archive, InterfaceKind::model_exchange, parameters, t0, t_stop);
-  check_update(fmu_->update_discrete_states(), archive.label(), t0);
+  take_update(fmu_->update_discrete_states(), t0);
   fmu_->enter_continuous_time_mode();
   x0_.resize(static_cast<std::size_t>(num_states()));
   fmu_->get_continuous_states(x0_);
+}
+
+void ModelExchangeBlock::take_update(const DiscreteUpdate& update, double t) {
+  const FmuLabel& label = archive_->label();
+  if (update.terminate) throw FmuError(label, "asked to terminate the simulation at t = " + seconds(t));
+  next_time_event_ = kNone;
+  if (!update.next_event_time_defined) return;
+  if (!has_time_events_)
+    throw FmuError(label, "schedules a time event (nextEventTime = " + seconds(update.next_event_time) +
+                              ") but has no continuous states: mechsim lands on time events with the integrator "
+                              "of an FMU's states");
+  if (!(update.next_event_time > t))
+    throw FmuError(label, "schedules a time event at " + seconds(update.next_event_time) +
+                              ", not after the event at t = " + seconds(t));
+  next_time_event_ = update.next_event_time;
 }
 
 void ModelExchangeBlock::load(double t, std::span<const double> x, std::span<const double> u) const {
@@ -67,21 +86,50 @@ void ModelExchangeBlock::calc_outputs(double t, std::span<const double> x, std::
   for (std::size_t i = 0; i < outputs_.size(); ++i) y[i] = get_value(*fmu_, *outputs_[i]);
 }
 
+models::Crossing ModelExchangeBlock::event_direction(int index) const {
+  return index == num_indicators_ ? models::Crossing::falling : models::Crossing::any;
+}
+
 void ModelExchangeBlock::event_functions(double t, std::span<const double> x, std::span<const double> u,
                                          std::span<double> g) const {
-  load(t, x, u);
-  fmu_->get_event_indicators(g);
+  if (num_indicators_ > 0) {
+    load(t, x, u);
+    fmu_->get_event_indicators(g.first(static_cast<std::size_t>(num_indicators_)));
+  }
+  // Positive while the time event is ahead; none scheduled: a constant that never crosses.
+  if (has_time_events_) g[static_cast<std::size_t>(num_indicators_)] = std::isfinite(next_time_event_) ? next_time_event_ - t : 1.0;
 }
 
 bool ModelExchangeBlock::handle_events(double t, std::span<double> x, std::span<const double> u,
-                                       std::span<const int>) {
+                                       std::span<const int> crossed) {
   load(t, x, u);
   fmu_->enter_event_mode();
   const DiscreteUpdate update = fmu_->update_discrete_states();
-  check_update(update, archive_->label(), t);
+  take_update(update, t);
   fmu_->enter_continuous_time_mode();
   if (update.states_changed) fmu_->get_continuous_states(x);
-  return update.states_changed;
+  // A time event moves the time function's zero: the integrator restarts its root finding.
+  const bool time_event = has_time_events_ && crossed[static_cast<std::size_t>(num_indicators_)] != 0;
+  return update.states_changed || time_event;
+}
+
+std::vector<double> ModelExchangeBlock::save_discrete_state() const {
+  std::vector<double> saved{std::isfinite(next_time_event_) ? 1.0 : 0.0,
+                            std::isfinite(next_time_event_) ? next_time_event_ : 0.0};
+  if (can_save_state_) append_bytes(saved, fmu_->save_state());
+  return saved;
+}
+
+void ModelExchangeBlock::restore_discrete_state(std::span<const double> saved) {
+  std::vector<std::uint8_t> bytes;
+  std::size_t used = 0;
+  if (saved.size() < 2 || !read_bytes(saved.subspan(2), bytes, used) || 2 + used != saved.size()) {
+    // An FMU without the flags saved no state: say what it lacks, else the record is damaged.
+    if (!can_save_state_) fmu_->restore_state({});
+    throw FmuError(archive_->label(), "restore: the saved state is not one of this model-exchange block");
+  }
+  fmu_->restore_state(bytes);
+  next_time_event_ = saved[0] != 0.0 ? saved[1] : kNone;
 }
 
 }  // namespace mechsim::fmi

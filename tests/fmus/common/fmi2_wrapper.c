@@ -5,6 +5,7 @@
  * Build-time faults for the importer's error tests:
  *   FMU_OMIT_DO_STEP         the binary lacks fmi2DoStep
  *   FMU_INSTANTIATE_FAILS    fmi2Instantiate returns NULL */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -130,6 +131,53 @@ fmi2Status fmi2SetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t
   return fmi2OK;
 }
 
+/* --- FMU state: a copy of the model (the state is the Model struct; serialize = memcpy).
+ * Exported always; the description's flags decide whether an importer may use them. --- */
+EXPORT fmi2GetFMUstateTYPE fmi2GetFMUstate;
+fmi2Status fmi2GetFMUstate(fmi2Component c, fmi2FMUstate* state) {
+  Instance* s = c;
+  Model* copy = *state ? (Model*)*state : malloc(sizeof(Model));
+  if (!copy) return fail(s, "out of memory");
+  *copy = s->model;
+  copy->error = NULL;
+  *state = copy;
+  return fmi2OK;
+}
+EXPORT fmi2SetFMUstateTYPE fmi2SetFMUstate;
+fmi2Status fmi2SetFMUstate(fmi2Component c, fmi2FMUstate state) {
+  Instance* s = c;
+  if (!state) return fail(s, "fmi2SetFMUstate: no state");
+  s->model = *(const Model*)state;
+  return fmi2OK;
+}
+EXPORT fmi2FreeFMUstateTYPE fmi2FreeFMUstate;
+fmi2Status fmi2FreeFMUstate(fmi2Component c, fmi2FMUstate* state) {
+  free(*state);
+  *state = NULL;
+  return fmi2OK;
+}
+EXPORT fmi2SerializedFMUstateSizeTYPE fmi2SerializedFMUstateSize;
+fmi2Status fmi2SerializedFMUstateSize(fmi2Component c, fmi2FMUstate state, size_t* size) {
+  *size = sizeof(Model);
+  return fmi2OK;
+}
+EXPORT fmi2SerializeFMUstateTYPE fmi2SerializeFMUstate;
+fmi2Status fmi2SerializeFMUstate(fmi2Component c, fmi2FMUstate state, fmi2Byte bytes[], size_t size) {
+  if (size != sizeof(Model)) return fail(c, "fmi2SerializeFMUstate: wrong size");
+  memcpy(bytes, state, sizeof(Model));
+  return fmi2OK;
+}
+EXPORT fmi2DeSerializeFMUstateTYPE fmi2DeSerializeFMUstate;
+fmi2Status fmi2DeSerializeFMUstate(fmi2Component c, const fmi2Byte bytes[], size_t size, fmi2FMUstate* state) {
+  if (size != sizeof(Model)) return fail(c, "fmi2DeSerializeFMUstate: the bytes are not a state of this model");
+  Model* copy = malloc(sizeof(Model));
+  if (!copy) return fail(c, "out of memory");
+  memcpy(copy, bytes, sizeof(Model));
+  copy->error = NULL;
+  *state = copy;
+  return fmi2OK;
+}
+
 /* --- co-simulation --- */
 #ifndef FMU_OMIT_DO_STEP
 EXPORT fmi2DoStepTYPE fmi2DoStep;
@@ -151,8 +199,9 @@ fmi2Status fmi2NewDiscreteStates(fmi2Component c, fmi2EventInfo* info) {
   info->terminateSimulation = fmi2False;
   info->nominalsOfContinuousStatesChanged = fmi2False;
   info->valuesOfContinuousStatesChanged = model_event(&s->model) ? fmi2True : fmi2False;
-  info->nextEventTimeDefined = fmi2False;
-  info->nextEventTime = 0.0;
+  const double next = next_time_event(&s->model);
+  info->nextEventTimeDefined = isfinite(next) ? fmi2True : fmi2False;
+  info->nextEventTime = isfinite(next) ? next : 0.0;
   return fmi2OK;
 }
 EXPORT fmi2EnterContinuousTimeModeTYPE fmi2EnterContinuousTimeMode;

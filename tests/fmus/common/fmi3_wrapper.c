@@ -2,6 +2,7 @@
  * over the model of model.h, compiled against mechsim/fmi/fmi3_functions.h.
  * Build-time faults: FMU_OMIT_DO_STEP (no fmi3DoStep), FMU_INSTANTIATE_FAILS (both
  * instantiate functions return NULL). */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -142,6 +143,54 @@ fmi3Status fmi3SetBoolean(fmi3Instance instance, const fmi3ValueReference vr[], 
   return fmi3OK;
 }
 
+/* --- FMU state: a copy of the model (serialize = memcpy); the description's flags decide
+ * whether an importer may use these. --- */
+EXPORT fmi3GetFMUStateTYPE fmi3GetFMUState;
+fmi3Status fmi3GetFMUState(fmi3Instance instance, fmi3FMUState* state) {
+  Instance* s = instance;
+  Model* copy = *state ? (Model*)*state : malloc(sizeof(Model));
+  if (!copy) return fail(s, "out of memory");
+  *copy = s->model;
+  copy->error = NULL;
+  *state = copy;
+  return fmi3OK;
+}
+EXPORT fmi3SetFMUStateTYPE fmi3SetFMUState;
+fmi3Status fmi3SetFMUState(fmi3Instance instance, fmi3FMUState state) {
+  Instance* s = instance;
+  if (!state) return fail(s, "fmi3SetFMUState: no state");
+  s->model = *(const Model*)state;
+  return fmi3OK;
+}
+EXPORT fmi3FreeFMUStateTYPE fmi3FreeFMUState;
+fmi3Status fmi3FreeFMUState(fmi3Instance instance, fmi3FMUState* state) {
+  free(*state);
+  *state = NULL;
+  return fmi3OK;
+}
+EXPORT fmi3SerializedFMUStateSizeTYPE fmi3SerializedFMUStateSize;
+fmi3Status fmi3SerializedFMUStateSize(fmi3Instance instance, fmi3FMUState state, size_t* size) {
+  *size = sizeof(Model);
+  return fmi3OK;
+}
+EXPORT fmi3SerializeFMUStateTYPE fmi3SerializeFMUState;
+fmi3Status fmi3SerializeFMUState(fmi3Instance instance, fmi3FMUState state, fmi3Byte bytes[], size_t size) {
+  if (size != sizeof(Model)) return fail(instance, "fmi3SerializeFMUState: wrong size");
+  memcpy(bytes, state, sizeof(Model));
+  return fmi3OK;
+}
+EXPORT fmi3DeserializeFMUStateTYPE fmi3DeserializeFMUState;
+fmi3Status fmi3DeserializeFMUState(fmi3Instance instance, const fmi3Byte bytes[], size_t size,
+                                   fmi3FMUState* state) {
+  if (size != sizeof(Model)) return fail(instance, "fmi3DeserializeFMUState: the bytes are not a state of this model");
+  Model* copy = malloc(sizeof(Model));
+  if (!copy) return fail(instance, "out of memory");
+  memcpy(copy, bytes, sizeof(Model));
+  copy->error = NULL;
+  *state = copy;
+  return fmi3OK;
+}
+
 /* --- co-simulation --- */
 #ifndef FMU_OMIT_DO_STEP
 EXPORT fmi3DoStepTYPE fmi3DoStep;
@@ -172,8 +221,9 @@ fmi3Status fmi3UpdateDiscreteStates(fmi3Instance instance, fmi3Boolean* need_upd
   *terminate = false;
   *nominals_changed = false;
   *values_changed = model_event(&s->model) != 0;
-  *next_defined = false;
-  *next_time = 0.0;
+  const double next = next_time_event(&s->model);
+  *next_defined = isfinite(next);
+  *next_time = isfinite(next) ? next : 0.0;
   return fmi3OK;
 }
 EXPORT fmi3EnterContinuousTimeModeTYPE fmi3EnterContinuousTimeMode;

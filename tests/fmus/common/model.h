@@ -37,8 +37,14 @@ int model_event(Model* m);
  * derivative evaluation; returns 0, or 1 with m->error set (the call then fails). */
 int model_check(Model* m, double t_end);
 
+/* Optional (a weak symbol: models without time events leave it out): the time of the next
+ * time event, at which model_event is called (INFINITY: none). */
+double model_next_event_time(const Model* m) __attribute__((weak));
+/* model_next_event_time where the model has it, else INFINITY (solver.c). */
+double next_time_event(const Model* m);
+
 /* Co-simulation: integrates from m->time to t_end with RK4 substeps of at most
- * model_max_substep, locating state events by bisection (solver.c). */
+ * model_max_substep, locating state events by bisection and stopping at time events (solver.c). */
 int model_advance(Model* m, double t_end);
 
 #endif

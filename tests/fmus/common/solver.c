@@ -1,7 +1,8 @@
 /* The co-simulation FMUs' own integrator: classic RK4 with fixed substeps, inputs held over
  * the step (as the importer sets them before the step). A falling (> 0 to <= 0) event
  * indicator within a substep is located by bisection to 1e-13 s, the model handles the
- * event there and integration resumes. */
+ * event there and integration resumes. A substep ends on a time event, which the model
+ * handles there. */
 #include <math.h>
 #include <string.h>
 
@@ -31,15 +32,30 @@ static int crossed(const double* before, const double* after) {
   return 0;
 }
 
+double next_time_event(const Model* m) { return model_next_event_time ? model_next_event_time(m) : INFINITY; }
+
 int model_advance(Model* m, double t_end) {
   while (m->time < t_end) {
-    const double h = fmin(model_max_substep, t_end - m->time);
+    const double te = next_time_event(m);
+    if (te <= m->time) {  /* due (e.g. scheduled at the step's start) */
+      model_event(m);
+      continue;
+    }
+    double h = fmin(model_max_substep, t_end - m->time);
+    const int timed = te <= m->time + h;
+    if (timed) h = te - m->time;
     Model start = *m;
     double z0[MODEL_MAX_INDICATORS], z1[MODEL_MAX_INDICATORS];
     model_event_indicators(m, z0);
     rk4(m, h);
     model_event_indicators(m, z1);
-    if (!crossed(z0, z1)) continue;
+    if (!crossed(z0, z1)) {
+      if (timed) {
+        m->time = te;
+        model_event(m);
+      }
+      continue;
+    }
     /* Bisection on the substep length: lo without the crossing, hi with it. */
     double lo = 0.0, hi = h;
     while (hi - lo > 1e-13) {

@@ -165,5 +165,71 @@ TEST(ModelDescription, TypesMechsimDoesNotExchangeAreListedAsOther) {
   EXPECT_EQ(md3.variables.at(2).causality, Causality::structural_parameter);
 }
 
+// <ModelStructure> output dependencies: listed (FMI 2: 1-based indices, FMI 3: value
+// references), empty (depends on nothing), absent (may depend on everything), and refused
+// where they name no variable.
+TEST(ModelDescription, OutputDependencies) {
+  const auto fmi2 = [](const std::string& outputs) {
+    return R"(<?xml version="1.0"?>
+<fmiModelDescription fmiVersion="2.0" modelName="m" guid="g">
+  <ModelExchange modelIdentifier="m"/>
+  <ModelVariables>
+    <ScalarVariable name="u1" valueReference="0" causality="input"><Real start="0"/></ScalarVariable>
+    <ScalarVariable name="u2" valueReference="1" causality="input"><Real start="0"/></ScalarVariable>
+    <ScalarVariable name="x" valueReference="2"><Real/></ScalarVariable>
+    <ScalarVariable name="y1" valueReference="3" causality="output"><Real/></ScalarVariable>
+    <ScalarVariable name="y2" valueReference="4" causality="output"><Real/></ScalarVariable>
+    <ScalarVariable name="y3" valueReference="5" causality="output"><Real/></ScalarVariable>
+  </ModelVariables>
+  <ModelStructure><Outputs>)" + outputs + R"(</Outputs></ModelStructure>
+</fmiModelDescription>)";
+  };
+  const ModelDescription md2 = parse_model_description(
+      fmi2(R"(<Unknown index="4" dependencies="2 3"/><Unknown index="5" dependencies=""/><Unknown index="6"/>)"),
+      FmuLabel{"m.fmu", ""});
+  ASSERT_EQ(md2.output_dependencies.size(), 3u);
+  EXPECT_EQ(md2.output_dependencies[0].variable, 3);
+  EXPECT_EQ(md2.output_dependencies[0].dependencies, (std::vector<int>{1, 2}));  // u2 and x
+  EXPECT_EQ(md2.output_dependencies[1].dependencies, std::vector<int>{});
+  EXPECT_FALSE(md2.output_dependencies[2].dependencies.has_value());
+  EXPECT_EQ(md2.find_output_dependencies(4), &md2.output_dependencies[1]);
+  EXPECT_EQ(md2.find_output_dependencies(0), nullptr);
+  try {
+    parse_model_description(fmi2(R"(<Unknown index="4" dependencies="1 7"/>)"), FmuLabel{"m.fmu", ""});
+    ADD_FAILURE() << "not refused";
+  } catch (const FmuError& e) {
+    EXPECT_NE(std::string(e.what()).find("<ModelStructure><Outputs>: dependency 7 is not a ScalarVariable (1..6)"),
+              std::string::npos)
+        << e.what();
+  }
+
+  const std::string fmi3 = R"(<?xml version="1.0"?>
+<fmiModelDescription fmiVersion="3.0" modelName="m" instantiationToken="t">
+  <ModelExchange modelIdentifier="m"/>
+  <ModelVariables>
+    <Float64 name="u1" valueReference="10" causality="input" start="0"/>
+    <Float64 name="u2" valueReference="11" causality="input" start="0"/>
+    <Float64 name="y1" valueReference="20" causality="output"/>
+    <Float64 name="y2" valueReference="21" causality="output"/>
+  </ModelVariables>
+  <ModelStructure><Output valueReference="20" dependencies="11"/><Output valueReference="21"/></ModelStructure>
+</fmiModelDescription>)";
+  const ModelDescription md3 = parse_model_description(fmi3, FmuLabel{"m.fmu", ""});
+  ASSERT_EQ(md3.output_dependencies.size(), 2u);
+  EXPECT_EQ(md3.output_dependencies[0].variable, 2);
+  EXPECT_EQ(md3.output_dependencies[0].dependencies, std::vector<int>{1});
+  EXPECT_FALSE(md3.output_dependencies[1].dependencies.has_value());
+  std::string bad = fmi3;
+  bad.replace(bad.find(R"(dependencies="11")"), 17, R"(dependencies="12")");
+  try {
+    parse_model_description(bad, FmuLabel{"m.fmu", ""});
+    ADD_FAILURE() << "not refused";
+  } catch (const FmuError& e) {
+    EXPECT_NE(std::string(e.what()).find("<ModelStructure><Output>: dependency 12 is no variable's valueReference"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace mechsim::fmi

@@ -13,9 +13,14 @@
 // Ports as ModelExchangeBlock (the FMU's exchanged inputs and outputs, by name, with the
 // FMU's units); outputs have no direct feedthrough (held). Errors: FmuError naming the FMU,
 // participant, function and time (step status, NaN outputs, ...).
-// Not supported yet: checkpoints (save_discrete_state returns the held outputs only; the
-// FMU's own state is not saved, so a rollback or an adaptive-step retry cannot be honoured
-// and must be refused by whoever plans the run), a varying step (Ts is fixed).
+//
+// Checkpoints (save/restore_discrete_state): the held outputs, the last sample instant and,
+// for an FMU that declares canGetAndSetFMUstate and canSerializeFMUstate (FMI 3:
+// ...FMUState), its serialized state, so that a rollback puts the FMU back where it was.
+// Restoring into an FMU without those flags is refused (FmuError naming the missing flag);
+// a run that may roll back refuses such an FMU before it starts. The step Ts is fixed: an
+// adaptive macro step lands on the block's sample instants, as on a native sampled block's,
+// so the FMU is always stepped by Ts.
 #pragma once
 
 #include <map>
@@ -40,7 +45,7 @@ class CoSimulationBlock final : public models::Block {
                     std::span<double> y) const override;
   double sample_time() const override { return step_size_; }
   void discrete_update(double t, std::span<double> x, std::span<const double> u) override;
-  std::vector<double> save_discrete_state() const override { return held_; }
+  std::vector<double> save_discrete_state() const override;
   void restore_discrete_state(std::span<const double> saved) override;
 
  private:
@@ -48,6 +53,7 @@ class CoSimulationBlock final : public models::Block {
   std::unique_ptr<FmuInstance> fmu_;
   std::vector<const Variable*> inputs_, outputs_;
   double step_size_;
+  bool can_save_state_ = false;  // canGetAndSetFMUstate and canSerializeFMUstate
   double last_sample_ = 0.0;
   bool sampled_once_ = false;
   std::vector<double> held_;  // outputs at the last sample

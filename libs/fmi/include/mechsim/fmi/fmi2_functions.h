@@ -22,6 +22,7 @@ typedef double fmi2Real;
 typedef int fmi2Integer;
 typedef int fmi2Boolean;
 typedef char fmi2Char;
+typedef char fmi2Byte;
 typedef const fmi2Char* fmi2String;
 
 #define fmi2True 1
@@ -78,6 +79,15 @@ typedef fmi2Status fmi2SetIntegerTYPE(fmi2Component c, const fmi2ValueReference 
                                       const fmi2Integer value[]);
 typedef fmi2Status fmi2SetBooleanTYPE(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
                                       const fmi2Boolean value[]);
+
+/* FMU state (canGetAndSetFMUstate, canSerializeFMUstate) */
+typedef fmi2Status fmi2GetFMUstateTYPE(fmi2Component c, fmi2FMUstate* state);
+typedef fmi2Status fmi2SetFMUstateTYPE(fmi2Component c, fmi2FMUstate state);
+typedef fmi2Status fmi2FreeFMUstateTYPE(fmi2Component c, fmi2FMUstate* state);
+typedef fmi2Status fmi2SerializedFMUstateSizeTYPE(fmi2Component c, fmi2FMUstate state, size_t* size);
+typedef fmi2Status fmi2SerializeFMUstateTYPE(fmi2Component c, fmi2FMUstate state, fmi2Byte serialized[], size_t size);
+typedef fmi2Status fmi2DeSerializeFMUstateTYPE(fmi2Component c, const fmi2Byte serialized[], size_t size,
+                                               fmi2FMUstate* state);
 
 /* Model Exchange */
 typedef fmi2Status fmi2EnterEventModeTYPE(fmi2Component c);

@@ -22,6 +22,7 @@ typedef double fmi3Float64;
 typedef int32_t fmi3Int32;
 typedef bool fmi3Boolean;
 typedef char fmi3Char;
+typedef uint8_t fmi3Byte;
 typedef const fmi3Char* fmi3String;
 
 typedef enum { fmi3OK, fmi3Warning, fmi3Discard, fmi3Error, fmi3Fatal } fmi3Status;
@@ -70,6 +71,16 @@ typedef fmi3Status fmi3UpdateDiscreteStatesTYPE(fmi3Instance instance, fmi3Boole
                                                 fmi3Boolean* nominals_changed, fmi3Boolean* values_changed,
                                                 fmi3Boolean* next_event_time_defined,
                                                 fmi3Float64* next_event_time);
+
+/* FMU state (canGetAndSetFMUState, canSerializeFMUState) */
+typedef fmi3Status fmi3GetFMUStateTYPE(fmi3Instance instance, fmi3FMUState* state);
+typedef fmi3Status fmi3SetFMUStateTYPE(fmi3Instance instance, fmi3FMUState state);
+typedef fmi3Status fmi3FreeFMUStateTYPE(fmi3Instance instance, fmi3FMUState* state);
+typedef fmi3Status fmi3SerializedFMUStateSizeTYPE(fmi3Instance instance, fmi3FMUState state, size_t* size);
+typedef fmi3Status fmi3SerializeFMUStateTYPE(fmi3Instance instance, fmi3FMUState state, fmi3Byte serialized[],
+                                             size_t size);
+typedef fmi3Status fmi3DeserializeFMUStateTYPE(fmi3Instance instance, const fmi3Byte serialized[], size_t size,
+                                               fmi3FMUState* state);
 
 /* Model Exchange */
 typedef fmi3Status fmi3EnterContinuousTimeModeTYPE(fmi3Instance instance);

@@ -19,6 +19,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "mechsim/fmi/archive.h"
 
@@ -32,6 +33,11 @@ struct DiscreteUpdate {
   bool next_event_time_defined = false;
   double next_event_time = 0.0;
 };
+
+// What an FMU lacks for mechsim to save and restore its state (checkpoints, rollback): ""
+// when its interface `kind` declares both flags, else the missing ones as the FMU's version
+// spells them ("canSerializeFMUstate", "canGetAndSetFMUState and canSerializeFMUState").
+std::string missing_state_capabilities(const ModelDescription& md, InterfaceKind kind);
 
 class FmuInstance {
  public:
@@ -78,10 +84,26 @@ class FmuInstance {
   // Returns true when the FMU asks for event mode (a step event).
   virtual bool completed_integrator_step() = 0;
 
+  // --- FMU state (both interfaces; needs canGetAndSetFMUstate and canSerializeFMUstate) ---
+  // The FMU's whole state as bytes (fmiXGetFMUstate, SerializedFMUstateSize, Serialize,
+  // FreeFMUstate), and back into this or another instance of the same FMU (DeSerialize,
+  // SetFMUstate, FreeFMUstate): what a checkpoint holds of an FMU. The functions are
+  // resolved at load only when the description declares both flags; without them these
+  // throw FmuError naming the missing flag.
+  virtual std::vector<std::uint8_t> save_state() = 0;
+  virtual void restore_state(std::span<const std::uint8_t> bytes) = 0;
+
  protected:
   FmuInstance(FmuLabel label, InterfaceKind kind) : label_(std::move(label)), kind_(kind) {}
+  // Throws FmuError when missing_state_ is not empty (a save or restore without the flags).
+  void require_state_capability(const char* what) const;
   FmuLabel label_;
   InterfaceKind kind_;
+  std::string missing_state_;  // missing_state_capabilities of the description
+  // Once a state was saved (or set) it may be set again later (a rollback): the steps then tell the
+  // FMU that a state prior to their start may still be set (noSetFMUStatePriorToCurrentPoint
+  // false), so that it keeps what such a set needs.
+  bool state_saved_ = false;
   double time_ = 0.0;  // the FMU's time: after the last step, set_time or initialization
 };
 

@@ -59,6 +59,14 @@ struct UnitDefinition {
   double factor = 1.0, offset = 0.0;
 };
 
+// An output of <ModelStructure> (FMI 2 <Outputs><Unknown>, FMI 3 <Output>) and what it
+// depends on: indices into ModelDescription::variables (inputs, states, ...). nullopt where
+// the description gives no `dependencies` attribute: then it may depend on everything.
+struct OutputDependencies {
+  int variable = -1;
+  std::optional<std::vector<int>> dependencies;
+};
+
 struct ModelDescription {
   FmiVersion version = FmiVersion::fmi2;
   std::string fmi_version;             // the attribute as written ("2.0", "3.0")
@@ -73,11 +81,14 @@ struct ModelDescription {
   // derivatives of (index into `variables`; -1 where the description does not say).
   std::vector<int> state_variables;
   int number_of_event_indicators = 0;
+  std::vector<OutputDependencies> output_dependencies;
   std::optional<double> default_start_time, default_stop_time, default_tolerance, default_step_size;
 
   const Interface* find_interface(InterfaceKind kind) const;
   const Variable* find_variable(std::string_view name) const;
   const UnitDefinition* find_unit(std::string_view name) const;
+  // The <ModelStructure> entry of variable index `variable`, nullptr when it has none.
+  const OutputDependencies* find_output_dependencies(int variable) const;
 };
 
 // Parses the text of modelDescription.xml. Refuses (FmuError naming `label`) malformed XML

@@ -3,21 +3,31 @@
 // integrate it like any native block — in a node and in the monolithic composer alike.
 //
 // Ports: the FMU's Real/Float64 variables of causality input and output, by name, with the
-// FMU's units (Integer/Int32 and Boolean inputs and outputs are carried as doubles). States:
-// the FMU's continuous states in its order, named after the variables their derivatives
-// are declared for (state[i] where the description does not say). Events: the
-// FMU's event indicators, either crossing direction; at a crossing the FMU's event iteration
-// runs (enter event mode, update discrete states until settled) and may jump the states.
+// FMU's units (Integer/Int32 and Boolean inputs and outputs are carried as doubles). Each
+// output depends directly on the inputs its <ModelStructure> dependencies list (on every
+// input where the description does not say). States: the FMU's continuous states in its
+// order, named after the variables their derivatives are declared for (state[i] where the
+// description does not say).
 //
-// Each output is declared as depending directly on every input (the conservative reading of
-// a description without dependencies; <ModelStructure> dependencies are not read yet).
+// Events: the FMU's event indicators, either crossing direction, and (for an FMU with
+// continuous states) one more event function for its time events, next_event_time - t,
+// falling: the integrator lands on the time the FMU's last event iteration scheduled
+// (nextEventTime), to its root-finding resolution, never before it. At either event the
+// FMU's event iteration runs (enter event mode, update discrete states until settled) and
+// may jump the states and schedule the next time event.
+//
+// Checkpoints (save/restore_discrete_state): the scheduled time event and, for an FMU that
+// declares canGetAndSetFMUstate and canSerializeFMUstate (FMI 3: ...FMUState), its whole
+// serialized state (discrete states, counters, whatever it keeps); the continuous states
+// are the integrator's. Restoring into an FMU without those flags is refused (FmuError
+// naming the missing flag): a run that may roll back refuses such an FMU before it starts.
+//
 // Refused (FmuError naming file, participant, function and time): every bad-FMU case of
-// FmuInstance, a scene parameter the FMU lacks or that is not a parameter, an FMU that asks
-// for time events (nextEventTime: not supported yet) or to terminate, NaN/inf outputs.
-// fmi2CompletedIntegratorStep / fmi3CompletedIntegratorStep is not called (the integrator
-// has no per-step hook): an FMU that needs it for step events is not run correctly.
-// Checkpoints hold the continuous states only (the FMU's discrete state, e.g. a counter, is
-// not saved): a rollback of an FMU with discrete state is not supported yet.
+// FmuInstance, a scene parameter the FMU lacks or that is not a parameter, a request to
+// terminate, a time event of an FMU without continuous states (no integrator to land on
+// it), NaN/inf outputs. fmi2CompletedIntegratorStep / fmi3CompletedIntegratorStep is not
+// called (the integrator has no per-step hook): an FMU that needs it for step events is not
+// run correctly.
 #pragma once
 
 #include <map>
@@ -43,21 +53,32 @@ class ModelExchangeBlock final : public models::Block {
                    std::span<double> dxdt) const override;
   void calc_outputs(double t, std::span<const double> x, std::span<const double> u,
                     std::span<double> y) const override;
-  int num_event_functions() const override { return num_indicators_; }
+  int num_event_functions() const override { return num_indicators_ + (has_time_events_ ? 1 : 0); }
+  models::Crossing event_direction(int index) const override;
   void event_functions(double t, std::span<const double> x, std::span<const double> u,
                        std::span<double> g) const override;
   bool handle_events(double t, std::span<double> x, std::span<const double> u,
                      std::span<const int> crossed) override;
+  std::vector<double> save_discrete_state() const override;
+  void restore_discrete_state(std::span<const double> saved) override;
+
+  // The time event the FMU scheduled last (+inf: none).
+  double next_time_event() const { return next_time_event_; }
 
  private:
   // Hands t, x and u to the FMU (the calls every evaluation starts with).
   void load(double t, std::span<const double> x, std::span<const double> u) const;
+  // Ends an event iteration at t: refuses what the block cannot honour, keeps the next time event.
+  void take_update(const DiscreteUpdate& update, double t);
 
   std::shared_ptr<const FmuArchive> archive_;
   std::unique_ptr<FmuInstance> fmu_;
   std::vector<const Variable*> inputs_, outputs_;
   std::vector<double> x0_;
   int num_indicators_ = 0;
+  bool has_time_events_ = false;  // an event function for time events (the FMU has states)
+  bool can_save_state_ = false;   // canGetAndSetFMUstate and canSerializeFMUstate
+  double next_time_event_;
 };
 
 }  // namespace mechsim::fmi
