@@ -236,7 +236,7 @@ class ZipWriter {
 
 std::string read_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot read the FMU binary " + path);
+  if (!in) throw std::runtime_error("cannot read " + path + " (to pack into the FMU)");
   std::ostringstream s;
   s << in.rdbuf();
   return s.str();
@@ -253,9 +253,12 @@ void write_fmu(const ExportConfig& config, const ExportRequest& request) {
   char token[64];
   std::snprintf(token, sizeof token, "{mechsim-%016zx}", std::hash<std::string>{}(yaml));
   const std::string binary = read_file(request.binary);
+  const std::string platform = std::string("binaries/") + (request.fmi_version == 2 ? "linux64" : "x86_64-linux") + "/";
   ZipWriter zip(request.output);
   zip.add("modelDescription.xml", model_description_xml(participant, request.fmi_version, id, token));
-  zip.add(std::string("binaries/") + (request.fmi_version == 2 ? "linux64" : "x86_64-linux") + "/" + id + ".so", binary);
+  zip.add(platform + id + ".so", binary);
+  // The binary finds it beside itself (RUNPATH $ORIGIN): the FMU needs no yaml-cpp installed.
+  zip.add(platform + MECHSIM_FMU_BUNDLED_SONAME, read_file(MECHSIM_FMU_BUNDLED_LIBRARY));
   zip.add("resources/participant.yaml", yaml);
   zip.close();
 }
