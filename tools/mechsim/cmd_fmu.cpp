@@ -25,7 +25,7 @@ void add_fmu_export_command(CLI::App* fmu, int& exit_code) {
   auto* cmd = fmu->add_subcommand(
       "export",
       "write a co-simulation FMU (FMI 2.0 or 3.0) of a scene's participant: its block with the scene's parameters and "
-      "its own integrator inside the step; the binary needs only libc/libm on a Linux x86-64 target");
+      "its own integrator inside the step (Linux x86-64; the FMU carries what it needs beyond libc and libstdc++)");
   cmd->add_option("type", o->request.type, "the participant's node type (servo_amplifier, tachometer, cam_shaft, ...)")
       ->required();
   cmd->add_option("--scene", o->scene, "the scene (YAML) the participant is taken from")->required()->check(CLI::ExistingFile);

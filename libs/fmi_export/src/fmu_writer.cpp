@@ -5,6 +5,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -19,9 +20,13 @@ namespace mechsim::fmi_export {
 
 namespace {
 
+// The shortest decimal that reads back as the same double.
 std::string exact(double v) {
   char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
+  for (int digits = 15; digits <= 17; ++digits) {
+    std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+    if (std::strtod(buf, nullptr) == v) break;
+  }
   return buf;
 }
 
@@ -268,7 +273,7 @@ std::string default_fmu_binary() {
   std::error_code ec;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
   if (ec) return "";
-  for (const fs::path candidate : {exe.parent_path() / "mechsim_fmu.so", exe.parent_path() / "../lib/mechsim/mechsim_fmu.so"})
+  for (const fs::path& candidate : {exe.parent_path() / "mechsim_fmu.so", exe.parent_path() / "../lib/mechsim/mechsim_fmu.so"})
     if (fs::exists(candidate, ec)) return candidate.lexically_normal().string();
   return "";
 }

@@ -220,9 +220,12 @@ double worst_difference_in_the_loop(const Scratch& scratch, const std::string& f
   const std::string fmu_run = scratch.path("fmu_run_" + step), native_run = scratch.path("native_run_" + step);
   fs::create_directories(fmu_run);
   fs::create_directories(native_run);
-  const auto with_fmu = cosim::run_inproc(config::load_scene(scene_file, overrides), {.run_dir = fmu_run});
+  cosim::InprocRunOptions fmu_options, native_options;
+  fmu_options.run_dir = fmu_run;
+  native_options.run_dir = native_run;
+  const auto with_fmu = cosim::run_inproc(config::load_scene(scene_file, overrides), fmu_options);
   EXPECT_TRUE(with_fmu.ok) << with_fmu.reason;
-  const auto native = cosim::run_inproc(config::load_scene(kScene, overrides), {.run_dir = native_run});
+  const auto native = cosim::run_inproc(config::load_scene(kScene, overrides), native_options);
   EXPECT_TRUE(native.ok) << native.reason;
   double worst = 0.0;
   for (const char* node : {"servo", "tacho", "slide"}) {
