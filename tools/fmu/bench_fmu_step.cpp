@@ -166,7 +166,8 @@ int main(int argc, char** argv) {
     for (auto& v : variants) {
       v.scene_file = (tmp / (v.name + ".yaml")).string();
       write_scene(scene_path, v.fmu_line, v.scene_file);
-      scenes.push_back(config::load_scene(v.scene_file, {"time.end=" + end + " s"}));
+      // A loaded machine can starve a node thread for seconds: not a partition here.
+      scenes.push_back(config::load_scene(v.scene_file, {"time.end=" + end + " s", "faults.partition_grace=60 s"}));
     }
     const int steps = static_cast<int>(scenes[0].time.steps());
     std::printf("scene %s, %d macro steps of %g us, %d rounds interleaved\n", scene_path.c_str(), steps,

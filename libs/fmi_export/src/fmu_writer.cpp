@@ -216,14 +216,20 @@ class ZipWriter {
   ~ZipWriter() {
     if (archive_ != nullptr) zip_discard(archive_);
   }
-  void add(const std::string& name, std::string content) {
+  // stored: no compression (the binaries: an importer unpacks them at every instantiation,
+  // and inflating 3 MB was the largest part of loading the FMU, docs/fmi.md).
+  void add(const std::string& name, std::string content, bool stored = false) {
     contents_.push_back(std::move(content));
     const std::string& data = contents_.back();
     zip_source_t* source = zip_source_buffer(archive_, data.data(), data.size(), 0);
-    if (source == nullptr || zip_file_add(archive_, name.c_str(), source, ZIP_FL_OVERWRITE | ZIP_FL_ENC_UTF_8) < 0) {
+    const zip_int64_t index =
+        source == nullptr ? -1 : zip_file_add(archive_, name.c_str(), source, ZIP_FL_OVERWRITE | ZIP_FL_ENC_UTF_8);
+    if (index < 0) {
       if (source != nullptr) zip_source_free(source);
       fail("cannot add " + name);
     }
+    if (stored && zip_set_file_compression(archive_, static_cast<zip_uint64_t>(index), ZIP_CM_STORE, 0) < 0)
+      fail("cannot store " + name + " uncompressed");
   }
   void close() {
     if (zip_close(archive_) < 0) fail("cannot write");
@@ -261,9 +267,9 @@ void write_fmu(const ExportConfig& config, const ExportRequest& request) {
   const std::string platform = std::string("binaries/") + (request.fmi_version == 2 ? "linux64" : "x86_64-linux") + "/";
   ZipWriter zip(request.output);
   zip.add("modelDescription.xml", model_description_xml(participant, request.fmi_version, id, token));
-  zip.add(platform + id + ".so", binary);
+  zip.add(platform + id + ".so", binary, true);
   // The binary finds it beside itself (RUNPATH $ORIGIN): the FMU needs no yaml-cpp installed.
-  zip.add(platform + MECHSIM_FMU_BUNDLED_SONAME, read_file(MECHSIM_FMU_BUNDLED_LIBRARY));
+  zip.add(platform + MECHSIM_FMU_BUNDLED_SONAME, read_file(MECHSIM_FMU_BUNDLED_LIBRARY), true);
   zip.add("resources/participant.yaml", yaml);
   zip.close();
 }
