@@ -127,8 +127,12 @@ ExportedParticipant::ExportedParticipant(ExportConfig config) : config_(std::mov
   const models::Block& b = *block_;
   for (int i = 0; i < b.num_inputs(); ++i) {
     const auto& p = b.inputs()[i];
-    variables_.push_back({p.name, VariableKind::input, i, p.unit, p.default_value,
-                          p.required ? "required input (connect it)" : "input"});
+    // FMI names are unique; a block may read and publish a quantity of the same name (the
+    // follower's cam `acceleration` in, its own out): the input is then `<name>_in`.
+    const bool clash = b.output_index(p.name) >= 0;
+    variables_.push_back({clash ? p.name + "_in" : p.name, VariableKind::input, i, p.unit, p.default_value,
+                          std::string(p.required ? "required input (connect it)" : "input") +
+                              (clash ? ", the block's input '" + p.name + "'" : "")});
   }
   for (int i = 0; i < b.num_outputs(); ++i)
     variables_.push_back({b.outputs()[i].name, VariableKind::output, i, b.outputs()[i].unit, 0.0, "output"});

@@ -9,7 +9,8 @@
 // exporter (for modelDescription.xml) and by the binary (to serve value references), with
 // the same code, so the two always agree:
 //   value reference 0        time (FMI 3's independent variable; unused in FMI 2)
-//   1 .. ni                  the block's inputs, in port order (start: the port's default)
+//   1 .. ni                  the block's inputs, in port order (start: the port's default;
+//                            named `<name>_in` where an output has the same name)
 //   then no                  the block's outputs, in port order
 //   then np                  parameters: every numeric leaf of `params:` ("position_gain",
 //                            "setpoint.distance"), in SI, start = the scene's value
