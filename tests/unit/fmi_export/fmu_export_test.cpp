@@ -163,8 +163,9 @@ TEST(ExportedServoAmplifier, RefusesWhatItCannotDoWithTheReasonInTheFmusLog) {
 // what a co-simulation master does: set u(t_k), fmiXDoStep(t_k, H), set u(t_k+1), get y.
 // The inputs are smooth test signals (each input its own sine), 400 steps of the scene's
 // macro step: the NC loop's servo and tacho (the tacho with the compliant coupling element
-// at its cut) at 25 us, and cam_press.yaml's cam shaft and follower at 1 ms (the follower
-// with its contact events located inside the steps by the integrator). For the servo a
+// at its cut) at 25 us, cam_press.yaml's cam shaft at 1 ms and cam_lift_off.yaml's flexible
+// follower at 0.5 ms (it lifts off: contact events located inside the steps by the FMU's
+// integrator, checked by its lift_off_count). For the servo a
 // parameter is also changed through the FMU (position_gain 40 -> 30 1/s) against the native
 // block built with the scene's --set, to show that FMU parameters reach the block.
 TEST_P(ExportedParticipantFmu, SteppedByTheImporterGivesTheNativeBlocksOutputsBitForBit) {
@@ -189,8 +190,12 @@ TEST_P(ExportedParticipantFmu, SteppedByTheImporterGivesTheNativeBlocksOutputsBi
   native->initial_state(t0, x0);
   solve::BlockIntegrator integrator(*native, cosim::solver_options(native_config.solver), t0, x0);
   const int ni = native->num_inputs(), no = native->num_outputs();
+  // A shaft `speed` input turns at 100 rad/s (with a ripple), so that a follower's inertia
+  // overcomes its spring and it lifts off: state events inside the steps.
+  const int speed = native->input_index("speed");
   const auto inputs_at = [&](double t, std::span<double> u) {
     for (int i = 0; i < ni; ++i) u[i] = 0.2 * (i + 1) * std::sin(2 * std::numbers::pi * 40.0 * (i + 1) * t);
+    if (speed >= 0) u[speed] += 100.0;
   };
 
   // The FMU through the importer.
@@ -238,13 +243,17 @@ TEST_P(ExportedParticipantFmu, SteppedByTheImporterGivesTheNativeBlocksOutputsBi
   EXPECT_EQ(differing, 0) << "worst relative difference " << worst;
   // The signals moved: the comparison was not of two constants.
   EXPECT_GT(first_output_swing, 1e-6);
+  // The follower lost contact at least once: its events were located inside the steps.
+  if (const int lift_offs = native->output_index("lift_off_count"); lift_offs >= 0) {
+    EXPECT_GT(y[lift_offs], 0.0);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(NcSlideLoop, ExportedParticipantFmu,
                          ::testing::Values(Case{"servo_amplifier", "servo", 2}, Case{"servo_amplifier", "servo", 3},
                                            Case{"tachometer", "tacho", 2}, Case{"tachometer", "tacho", 3},
                                            Case{"cam_shaft", "cam", 2, "cam_press.yaml"},
-                                           Case{"follower", "follower", 3, "cam_press.yaml"}),
+                                           Case{"follower", "follower", 3, "cam_lift_off.yaml"}),
                          [](const auto& info) {
                            return std::string(info.param.participant) + "_fmi" + std::to_string(info.param.fmi);
                          });
