@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include <sys/wait.h>
+
 #include <gtest/gtest.h>
 
 #include "fmu_info.h"
@@ -324,6 +326,34 @@ TEST(ExportedServoAmplifier, PlaysTheServoInTheNcLoopWithAFirstOrderDifferenceTo
   EXPECT_GT(at_h, 0.0);
   EXPECT_GT(at_half / at_h, 0.35) << where_half;
   EXPECT_LT(at_half / at_h, 0.65) << where_half;
+}
+
+// The command end to end: `mechsim fmu export` writes an FMU the importer opens (with the
+// binary found next to the executable), and a wrong type is refused with exit status 1 and
+// the scene's key on stderr.
+TEST(FmuExportCommand, WritesAnFmuAndRefusesAWrongType) {
+  const std::string mechsim = std::string(MECHSIM_BIN_DIR) + "/mechsim";
+  ASSERT_TRUE(fs::exists(mechsim)) << mechsim;
+  Scratch scratch;
+  const auto run = [&](const std::string& args) {
+    const std::string command = mechsim + " fmu export " + args + " > " + scratch.path("out.txt") + " 2>&1";
+    const int status = std::system(command.c_str());
+    std::ifstream in(scratch.path("out.txt"));
+    std::stringstream out;
+    out << in.rdbuf();
+    return std::make_pair(WIFEXITED(status) ? WEXITSTATUS(status) : -1, out.str());
+  };
+  const std::string file = scratch.path("tacho.fmu");
+  const auto [ok, out] = run("tachometer --scene " + kScene + " --participant tacho --fmi 3 -o " + file);
+  ASSERT_EQ(ok, 0) << out;
+  const fmi::FmuArchive archive(fmi::FmuLabel{file, "tacho"});
+  EXPECT_EQ(archive.description().version, fmi::FmiVersion::fmi3);
+  EXPECT_EQ(variable(archive.description(), "armature_voltage").causality, fmi::Causality::input);
+  const auto [refused, message] = run("cam_shaft --scene " + kScene + " --participant tacho -o " + scratch.path("x.fmu"));
+  EXPECT_EQ(refused, 1) << message;
+  EXPECT_NE(message.find("participants.tacho.type: participant 'tacho' is a tachometer, not a cam_shaft"), std::string::npos)
+      << message;
+  EXPECT_FALSE(fs::exists(scratch.path("x.fmu")));
 }
 
 }  // namespace
