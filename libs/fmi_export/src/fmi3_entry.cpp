@@ -76,8 +76,9 @@ fmi3Instance fmi3InstantiateCoSimulation(fmi3String name, fmi3String, fmi3String
   return s.release();
 }
 
-MECHSIM_FMI_EXPORT fmi3Instance fmi3InstantiateModelExchange(fmi3String, fmi3String, fmi3String, fmi3Boolean, fmi3Boolean,
-                                                             fmi3InstanceEnvironment environment, fmi3LogMessageCallback log) {
+MECHSIM_FMI_EXPORT fmi3InstantiateModelExchangeTYPE fmi3InstantiateModelExchange;
+fmi3Instance fmi3InstantiateModelExchange(fmi3String, fmi3String, fmi3String, fmi3Boolean, fmi3Boolean,
+                                          fmi3InstanceEnvironment environment, fmi3LogMessageCallback log) {
   if (log != nullptr)
     log(environment, fmi3Error, "error", "this FMU offers co-simulation only (an exported mechsim participant)");
   return nullptr;

@@ -99,6 +99,7 @@ ExportConfig export_config(const config::Scene& scene, const ExportRequest& requ
   c.scene = scene.file;
   c.solver = spec->solver;
   c.params = spec->params;
+  c.time = scene.time;
   for (const auto& conn : scene.connections)
     if ((conn.from == spec->name || conn.to == spec->name) && conn.coupling) c.coupling = *conn.coupling;
   return c;
@@ -151,6 +152,12 @@ std::string model_description_xml(const ExportedParticipant& p, int fmi_version,
     cs.append_attribute("hasEventMode") = "false";
   }
   add_units(root, p.variables());
+  if (c.time) {
+    auto experiment = root.append_child("DefaultExperiment");
+    experiment.append_attribute("startTime") = exact(c.time->start).c_str();
+    experiment.append_attribute("stopTime") = exact(c.time->end).c_str();
+    experiment.append_attribute("stepSize") = exact(c.time->step).c_str();
+  }
 
   auto vars = root.append_child("ModelVariables");
   if (!v2) {

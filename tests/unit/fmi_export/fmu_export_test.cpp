@@ -103,6 +103,8 @@ TEST(ExportedServoAmplifier, DescriptionListsPortsParametersUnitsAndTrueFlags) {
     EXPECT_EQ(std::stod(variable(d, "integral_time").start.value()), 0.01);
     EXPECT_EQ(std::stod(variable(d, "setpoint.distance").start.value()), 1e-4);  // 0.1 mm in SI
     EXPECT_EQ(variable(d, "velocity_gain").unit, "");  // a bare number in the scene
+    EXPECT_EQ(d.default_step_size.value_or(0.0), scene.time.step);  // 25 us, read back exactly
+    EXPECT_EQ(d.default_stop_time.value_or(0.0), scene.time.end);
     const auto volt = std::find_if(d.units.begin(), d.units.end(), [](const auto& u) { return u.name == "V"; });
     ASSERT_NE(volt, d.units.end());
     const std::string info = tools::format_fmu_info(archive);

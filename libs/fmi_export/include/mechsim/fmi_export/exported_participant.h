@@ -45,6 +45,9 @@ struct ExportConfig {
   // The element at the cut of a connection to or from the participant (a compliant
   // coupling's spring-damper), which its node type builds into the block as the plan does.
   std::optional<config::ConfigNode> coupling;
+  // The scene's start, end and macro step, for the description's <DefaultExperiment>
+  // (not written to participant.yaml: the binary does not need them).
+  std::optional<config::TimeSpec> time;
 };
 
 std::string write_export_config(const ExportConfig& config);
