@@ -7,7 +7,7 @@
 #include <cstdarg>
 #include <string>
 
-#include "fmi_instance_base.h"
+#include "participant_resources.h"
 #include "mechsim/fmi/fmi2_functions.h"
 
 #define MECHSIM_FMI_EXPORT extern "C" __attribute__((visibility("default")))

@@ -6,7 +6,7 @@
 #include <limits>
 #include <string>
 
-#include "fmi_instance_base.h"
+#include "participant_resources.h"
 #include "mechsim/fmi/fmi3_functions.h"
 
 #define MECHSIM_FMI_EXPORT extern "C" __attribute__((visibility("default")))

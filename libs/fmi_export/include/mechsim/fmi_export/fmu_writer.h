@@ -3,7 +3,9 @@
 //   modelDescription.xml                       written here from the participant's variables
 //   binaries/<platform>/<id>.so                the prebuilt mechsim_fmu binary (one for all
 //                                              participants), named after the model identifier
+//   binaries/<platform>/libyaml-cpp.so.0.7     beside it (its RUNPATH is $ORIGIN)
 //   resources/participant.yaml                 what the binary plays (ExportConfig)
+// The binaries are stored uncompressed: an importer unpacks them at every instantiation.
 #pragma once
 
 #include <string>

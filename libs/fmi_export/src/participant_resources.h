@@ -1,6 +1,7 @@
-// What the FMI 2 and FMI 3 entry layers share: one exported participant per instance,
-// its configuration read from the FMU's resources folder, and every call guarded so that
-// an exception becomes a logged error status (nothing may unwind into the importer).
+// What the FMI 2 and FMI 3 entry layers share: an instance's exported participant, built
+// from resources/participant.yaml of the folder the importer names (an FMI 2 URI or an
+// FMI 3 path). Each layer guards its calls so that an exception becomes a logged error
+// status (nothing may unwind into the importer).
 #pragma once
 
 #include <exception>
