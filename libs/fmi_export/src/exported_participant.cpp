@@ -1,6 +1,7 @@
 #include "mechsim/fmi_export/exported_participant.h"
 
 #include <algorithm>
+#include <cstring>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -245,6 +246,54 @@ void ExportedParticipant::do_step(double t, double h) {
   integrator_->advance_to(t_end, held);
   t_ = t_end;
   outputs_stale_ = true;
+}
+
+ExportedParticipant::State ExportedParticipant::state() const {
+  if (!integrator_) throw std::logic_error("the FMU state is there only after initialization ended");
+  const auto x = integrator_->state();
+  return {t_, std::vector<double>(x.begin(), x.end()), block_->save_discrete_state(), u_};
+}
+
+void ExportedParticipant::set_state(const State& s) {
+  if (!integrator_) throw std::logic_error("an FMU state can be set only after initialization ended");
+  if (s.x.size() != x0_.size() || s.u.size() != u_.size())
+    throw std::invalid_argument("the FMU state is not one of this participant (" + std::to_string(s.x.size()) +
+                                " states, " + std::to_string(s.u.size()) + " inputs)");
+  block_->restore_discrete_state(s.discrete);
+  integrator_->reset_state(s.t, s.x);
+  u_ = s.u;
+  t_ = s.t;
+  outputs_stale_ = true;
+}
+
+std::vector<unsigned char> ExportedParticipant::serialize(const State& s) {
+  std::vector<double> flat{s.t};
+  for (const auto* part : {&s.x, &s.discrete, &s.u}) {
+    flat.push_back(static_cast<double>(part->size()));
+    flat.insert(flat.end(), part->begin(), part->end());
+  }
+  std::vector<unsigned char> bytes(flat.size() * sizeof(double));
+  std::memcpy(bytes.data(), flat.data(), bytes.size());
+  return bytes;
+}
+
+ExportedParticipant::State ExportedParticipant::deserialize(const unsigned char* bytes, std::size_t size) {
+  if (size % sizeof(double) != 0 || size < 4 * sizeof(double))
+    throw std::invalid_argument("a serialized FMU state of " + std::to_string(size) + " bytes is not one of mechsim's");
+  std::vector<double> flat(size / sizeof(double));
+  std::memcpy(flat.data(), bytes, size);
+  State s;
+  s.t = flat[0];
+  std::size_t at = 1;
+  for (auto* part : {&s.x, &s.discrete, &s.u}) {
+    if (at >= flat.size()) throw std::invalid_argument("a serialized FMU state ends early");
+    const double n = flat[at++];
+    if (!(n >= 0) || n > static_cast<double>(flat.size() - at)) throw std::invalid_argument("a serialized FMU state is damaged");
+    part->assign(flat.begin() + static_cast<std::ptrdiff_t>(at), flat.begin() + static_cast<std::ptrdiff_t>(at + static_cast<std::size_t>(n)));
+    at += static_cast<std::size_t>(n);
+  }
+  if (at != flat.size()) throw std::invalid_argument("a serialized FMU state has bytes left over");
+  return s;
 }
 
 }  // namespace mechsim::fmi_export

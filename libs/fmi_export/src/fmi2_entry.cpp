@@ -2,9 +2,11 @@
 // §4.2), over ExportedParticipant. Declared with the importer's own function types
 // (mechsim/fmi/fmi2_functions.h), so a signature that differs from what mechsim loads is a
 // compile error. Every function the standard requires is present; those of capabilities
-// the modelDescription does not claim (FMU state, directional and input/output
-// derivatives, asynchronous steps, strings) log why and return fmi2Error.
+// the modelDescription does not claim (directional and input/output derivatives,
+// asynchronous steps, strings) log why and return fmi2Error.
 #include <cstdarg>
+#include <cstring>
+#include <limits>
 #include <string>
 
 #include "participant_resources.h"
@@ -148,27 +150,49 @@ MECHSIM_FMI_EXPORT fmi2Status fmi2SetString(fmi2Component c, const fmi2ValueRefe
   return n == 0 ? fmi2OK : unsupported(c, "fmi2SetString", "the FMU has no String variables");
 }
 
-// Capabilities not claimed (canGetAndSetFMUstate, canSerializeFMUstate,
-// providesDirectionalDerivative, canInterpolateInputs, maxOutputDerivativeOrder = 0,
-// canRunAsynchronuously are all false in the modelDescription).
-MECHSIM_FMI_EXPORT fmi2Status fmi2GetFMUstate(fmi2Component c, fmi2FMUstate*) {
-  return unsupported(c, "fmi2GetFMUstate", "canGetAndSetFMUstate is false");
+// FMU state: a copy of ExportedParticipant::State (restoring it continues bit for bit).
+using State = ExportedParticipant::State;
+MECHSIM_FMI_EXPORT fmi2Status fmi2GetFMUstate(fmi2Component c, fmi2FMUstate* state) {
+  return guarded(c, "fmi2GetFMUstate", [&](Instance& s) {
+    if (*state != nullptr) *static_cast<State*>(*state) = s.core->state();  // the importer reuses it
+    else *state = new State(s.core->state());
+  });
 }
-MECHSIM_FMI_EXPORT fmi2Status fmi2SetFMUstate(fmi2Component c, fmi2FMUstate) {
-  return unsupported(c, "fmi2SetFMUstate", "canGetAndSetFMUstate is false");
+MECHSIM_FMI_EXPORT fmi2Status fmi2SetFMUstate(fmi2Component c, fmi2FMUstate state) {
+  return guarded(c, "fmi2SetFMUstate", [&](Instance& s) {
+    if (state == nullptr) throw std::invalid_argument("no FMU state given");
+    s.core->set_state(*static_cast<const State*>(state));
+  });
 }
-MECHSIM_FMI_EXPORT fmi2Status fmi2FreeFMUstate(fmi2Component c, fmi2FMUstate*) {
-  return unsupported(c, "fmi2FreeFMUstate", "canGetAndSetFMUstate is false");
+MECHSIM_FMI_EXPORT fmi2Status fmi2FreeFMUstate(fmi2Component c, fmi2FMUstate* state) {
+  return guarded(c, "fmi2FreeFMUstate", [&](Instance&) {
+    delete static_cast<State*>(*state);
+    *state = nullptr;
+  });
 }
-MECHSIM_FMI_EXPORT fmi2Status fmi2SerializedFMUstateSize(fmi2Component c, fmi2FMUstate, size_t*) {
-  return unsupported(c, "fmi2SerializedFMUstateSize", "canSerializeFMUstate is false");
+MECHSIM_FMI_EXPORT fmi2Status fmi2SerializedFMUstateSize(fmi2Component c, fmi2FMUstate state, size_t* size) {
+  return guarded(c, "fmi2SerializedFMUstateSize", [&](Instance&) {
+    *size = ExportedParticipant::serialize(*static_cast<const State*>(state)).size();
+  });
 }
-MECHSIM_FMI_EXPORT fmi2Status fmi2SerializeFMUstate(fmi2Component c, fmi2FMUstate, char[], size_t) {
-  return unsupported(c, "fmi2SerializeFMUstate", "canSerializeFMUstate is false");
+MECHSIM_FMI_EXPORT fmi2Status fmi2SerializeFMUstate(fmi2Component c, fmi2FMUstate state, char bytes[], size_t size) {
+  return guarded(c, "fmi2SerializeFMUstate", [&](Instance&) {
+    const auto serialized = ExportedParticipant::serialize(*static_cast<const State*>(state));
+    if (size < serialized.size()) throw std::invalid_argument("the buffer is smaller than fmi2SerializedFMUstateSize");
+    std::memcpy(bytes, serialized.data(), serialized.size());
+  });
 }
-MECHSIM_FMI_EXPORT fmi2Status fmi2DeSerializeFMUstate(fmi2Component c, const char[], size_t, fmi2FMUstate*) {
-  return unsupported(c, "fmi2DeSerializeFMUstate", "canSerializeFMUstate is false");
+MECHSIM_FMI_EXPORT fmi2Status fmi2DeSerializeFMUstate(fmi2Component c, const char bytes[], size_t size,
+                                                      fmi2FMUstate* state) {
+  return guarded(c, "fmi2DeSerializeFMUstate", [&](Instance&) {
+    State read = ExportedParticipant::deserialize(reinterpret_cast<const unsigned char*>(bytes), size);
+    if (*state != nullptr) *static_cast<State*>(*state) = std::move(read);
+    else *state = new State(std::move(read));
+  });
 }
+
+// Capabilities not claimed (providesDirectionalDerivative, canInterpolateInputs,
+// maxOutputDerivativeOrder = 0, canRunAsynchronuously are false in the modelDescription).
 MECHSIM_FMI_EXPORT fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReference[], size_t,
                                                            const fmi2ValueReference[], size_t, const fmi2Real[],
                                                            fmi2Real[]) {

@@ -1,8 +1,9 @@
 // FMI 3.0 co-simulation entry points of an exported mechsim participant (FMI 3.0.2 §2.2,
 // §4), over ExportedParticipant. Declared with the importer's own function types
 // (mechsim/fmi/fmi3_functions.h) where it has them. The functions of capabilities the
-// modelDescription does not claim (event mode, early return, FMU state, derivatives,
+// modelDescription does not claim (event mode, early return, derivatives,
 // clocks, other types than Float64) log why and return fmi3Error.
+#include <cstring>
 #include <limits>
 #include <string>
 
@@ -144,23 +145,45 @@ fmi3Status fmi3SetBoolean(fmi3Instance c, const fmi3ValueReference[], size_t n, 
   return n == 0 ? fmi3OK : unsupported(c, "fmi3SetBoolean", "the FMU has no Boolean variables");
 }
 
-MECHSIM_FMI_EXPORT fmi3Status fmi3GetFMUState(fmi3Instance c, fmi3FMUState*) {
-  return unsupported(c, "fmi3GetFMUState", "canGetAndSetFMUState is false");
+// FMU state: a copy of ExportedParticipant::State (restoring it continues bit for bit).
+using State = ExportedParticipant::State;
+MECHSIM_FMI_EXPORT fmi3Status fmi3GetFMUState(fmi3Instance c, fmi3FMUState* state) {
+  return guarded(c, "fmi3GetFMUState", [&](Instance& s) {
+    if (*state != nullptr) *static_cast<State*>(*state) = s.core->state();
+    else *state = new State(s.core->state());
+  });
 }
-MECHSIM_FMI_EXPORT fmi3Status fmi3SetFMUState(fmi3Instance c, fmi3FMUState) {
-  return unsupported(c, "fmi3SetFMUState", "canGetAndSetFMUState is false");
+MECHSIM_FMI_EXPORT fmi3Status fmi3SetFMUState(fmi3Instance c, fmi3FMUState state) {
+  return guarded(c, "fmi3SetFMUState", [&](Instance& s) {
+    if (state == nullptr) throw std::invalid_argument("no FMU state given");
+    s.core->set_state(*static_cast<const State*>(state));
+  });
 }
-MECHSIM_FMI_EXPORT fmi3Status fmi3FreeFMUState(fmi3Instance c, fmi3FMUState*) {
-  return unsupported(c, "fmi3FreeFMUState", "canGetAndSetFMUState is false");
+MECHSIM_FMI_EXPORT fmi3Status fmi3FreeFMUState(fmi3Instance c, fmi3FMUState* state) {
+  return guarded(c, "fmi3FreeFMUState", [&](Instance&) {
+    delete static_cast<State*>(*state);
+    *state = nullptr;
+  });
 }
-MECHSIM_FMI_EXPORT fmi3Status fmi3SerializedFMUStateSize(fmi3Instance c, fmi3FMUState, size_t*) {
-  return unsupported(c, "fmi3SerializedFMUStateSize", "canSerializeFMUState is false");
+MECHSIM_FMI_EXPORT fmi3Status fmi3SerializedFMUStateSize(fmi3Instance c, fmi3FMUState state, size_t* size) {
+  return guarded(c, "fmi3SerializedFMUStateSize", [&](Instance&) {
+    *size = ExportedParticipant::serialize(*static_cast<const State*>(state)).size();
+  });
 }
-MECHSIM_FMI_EXPORT fmi3Status fmi3SerializeFMUState(fmi3Instance c, fmi3FMUState, uint8_t[], size_t) {
-  return unsupported(c, "fmi3SerializeFMUState", "canSerializeFMUState is false");
+MECHSIM_FMI_EXPORT fmi3Status fmi3SerializeFMUState(fmi3Instance c, fmi3FMUState state, uint8_t bytes[], size_t size) {
+  return guarded(c, "fmi3SerializeFMUState", [&](Instance&) {
+    const auto serialized = ExportedParticipant::serialize(*static_cast<const State*>(state));
+    if (size < serialized.size()) throw std::invalid_argument("the buffer is smaller than fmi3SerializedFMUStateSize");
+    std::memcpy(bytes, serialized.data(), serialized.size());
+  });
 }
-MECHSIM_FMI_EXPORT fmi3Status fmi3DeserializeFMUState(fmi3Instance c, const uint8_t[], size_t, fmi3FMUState*) {
-  return unsupported(c, "fmi3DeserializeFMUState", "canSerializeFMUState is false");
+MECHSIM_FMI_EXPORT fmi3Status fmi3DeserializeFMUState(fmi3Instance c, const uint8_t bytes[], size_t size,
+                                                      fmi3FMUState* state) {
+  return guarded(c, "fmi3DeserializeFMUState", [&](Instance&) {
+    State read = ExportedParticipant::deserialize(bytes, size);
+    if (*state != nullptr) *static_cast<State*>(*state) = std::move(read);
+    else *state = new State(std::move(read));
+  });
 }
 MECHSIM_FMI_EXPORT fmi3Status fmi3GetDirectionalDerivative(fmi3Instance c, const fmi3ValueReference[], size_t,
                                                            const fmi3ValueReference[], size_t, const fmi3Float64[],

@@ -128,7 +128,8 @@ std::string model_description_xml(const ExportedParticipant& p, int fmi_version,
   if (v2) root.append_attribute("numberOfEventIndicators") = 0;
 
   // The capability flags it really has (docs/fmi.md): any step length (the integrator stops
-  // where it is asked to); no FMU state, no derivatives, no early return, no event mode.
+  // where it is asked to), FMU state get/set and serialized (ExportedParticipant::State);
+  // no derivatives, no early return, no event mode.
   auto cs = root.append_child("CoSimulation");
   cs.append_attribute("modelIdentifier") = id.c_str();
   cs.append_attribute("needsExecutionTool") = "false";
@@ -139,12 +140,12 @@ std::string model_description_xml(const ExportedParticipant& p, int fmi_version,
     cs.append_attribute("canInterpolateInputs") = "false";
     cs.append_attribute("canRunAsynchronuously") = "false";
     cs.append_attribute("canNotUseMemoryManagementFunctions") = "true";
-    cs.append_attribute("canGetAndSetFMUstate") = "false";
-    cs.append_attribute("canSerializeFMUstate") = "false";
+    cs.append_attribute("canGetAndSetFMUstate") = "true";
+    cs.append_attribute("canSerializeFMUstate") = "true";
     cs.append_attribute("providesDirectionalDerivative") = "false";
   } else {
-    cs.append_attribute("canGetAndSetFMUState") = "false";
-    cs.append_attribute("canSerializeFMUState") = "false";
+    cs.append_attribute("canGetAndSetFMUState") = "true";
+    cs.append_attribute("canSerializeFMUState") = "true";
     cs.append_attribute("providesDirectionalDerivatives") = "false";
     cs.append_attribute("providesAdjointDerivatives") = "false";
     cs.append_attribute("providesIntermediateUpdate") = "false";

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include <dlfcn.h>
 #include <sys/wait.h>
 
 #include <gtest/gtest.h>
@@ -22,6 +23,7 @@
 #include "mechsim/cosim/output_log.h"
 #include "mechsim/cosim/node_stepper.h"
 #include "mechsim/fmi/archive.h"
+#include "mechsim/fmi/fmi2_functions.h"
 #include "mechsim/fmi/instance.h"
 #include "mechsim/fmi_export/fmu_writer.h"
 #include "mechsim/solve/block_integrator.h"
@@ -71,7 +73,7 @@ struct Case {
 class ExportedParticipantFmu : public ::testing::TestWithParam<Case> {};
 
 // What the importer reads: FMI version, the co-simulation interface with the flags the
-// binary has (any step length; no FMU state), the block's ports with their SI units, and the
+// binary has (any step length, FMU state get/set and serialized), the block's ports with their SI units, and the
 // scene's parameters in SI with units from <UnitDefinitions>; `mechsim fmu info` lists them.
 TEST(ExportedServoAmplifier, DescriptionListsPortsParametersUnitsAndTrueFlags) {
   const config::Scene scene = config::load_scene(kScene);
@@ -87,8 +89,8 @@ TEST(ExportedServoAmplifier, DescriptionListsPortsParametersUnitsAndTrueFlags) {
     EXPECT_EQ(cs.kind, fmi::InterfaceKind::co_simulation);
     EXPECT_EQ(cs.model_identifier, "servo");
     EXPECT_TRUE(cs.can_handle_variable_step);
-    EXPECT_FALSE(cs.can_get_and_set_state);
-    EXPECT_FALSE(cs.can_serialize_state);
+    EXPECT_TRUE(cs.can_get_and_set_state);
+    EXPECT_TRUE(cs.can_serialize_state);
     EXPECT_FALSE(cs.provides_directional_derivatives);
     EXPECT_EQ(variable(d, "tacho_voltage").causality, fmi::Causality::input);
     EXPECT_EQ(variable(d, "tacho_voltage").unit, "V");
@@ -108,7 +110,7 @@ TEST(ExportedServoAmplifier, DescriptionListsPortsParametersUnitsAndTrueFlags) {
     const auto volt = std::find_if(d.units.begin(), d.units.end(), [](const auto& u) { return u.name == "V"; });
     ASSERT_NE(volt, d.units.end());
     const std::string info = tools::format_fmu_info(archive);
-    EXPECT_NE(info.find("variable step yes, get/set state no, serialize state no"), std::string::npos) << info;
+    EXPECT_NE(info.find("variable step yes, get/set state yes, serialize state yes"), std::string::npos) << info;
     EXPECT_NE(info.find("position_gain"), std::string::npos) << info;
   }
 }
@@ -328,6 +330,105 @@ TEST(ExportedServoAmplifier, PlaysTheServoInTheNcLoopWithAFirstOrderDifferenceTo
   EXPECT_GT(at_h, 0.0);
   EXPECT_GT(at_half / at_h, 0.35) << where_half;
   EXPECT_LT(at_half / at_h, 0.65) << where_half;
+}
+
+// FMU state through the binary's own FMI 2 functions (the importer does not call them yet):
+// the exported tachometer stepped 200 steps, its state taken, 200 more steps recorded; then
+// the state serialized, read back, set into the same instance and into a second one, and
+// the same 200 steps repeated: the outputs are the recorded ones bit for bit, since a step
+// restarts the integrator from the state at its start whether or not the state was set.
+TEST(ExportedTachometer, FmuStateRollsBackAndMovesToAnotherInstanceBitForBit) {
+  const config::Scene scene = config::load_scene(kScene);
+  Scratch scratch;
+  const std::string file = scratch.path("tacho.fmu");
+  export_participant(scene, "tachometer", "tacho", 2, file);
+  const fmi::FmuArchive archive(fmi::FmuLabel{file, "tacho"});
+  const auto& d = archive.description();
+  void* library = dlopen(archive.binary_path(fmi::InterfaceKind::co_simulation).c_str(), RTLD_NOW | RTLD_LOCAL);
+  ASSERT_NE(library, nullptr) << dlerror();
+  const auto fn = [&](const char* name) {
+    void* f = dlsym(library, name);
+    if (f == nullptr) throw std::runtime_error(std::string("missing ") + name);
+    return f;
+  };
+  using GetState = fmi2Status(fmi2Component, fmi2FMUstate*);
+  using SetState = fmi2Status(fmi2Component, fmi2FMUstate);
+  using StateSize = fmi2Status(fmi2Component, fmi2FMUstate, size_t*);
+  using Serialize = fmi2Status(fmi2Component, fmi2FMUstate, char[], size_t);
+  using Deserialize = fmi2Status(fmi2Component, const char[], size_t, fmi2FMUstate*);
+  auto* instantiate = reinterpret_cast<fmi2InstantiateTYPE*>(fn("fmi2Instantiate"));
+  auto* setup = reinterpret_cast<fmi2SetupExperimentTYPE*>(fn("fmi2SetupExperiment"));
+  auto* enter = reinterpret_cast<fmi2EnterInitializationModeTYPE*>(fn("fmi2EnterInitializationMode"));
+  auto* exit = reinterpret_cast<fmi2ExitInitializationModeTYPE*>(fn("fmi2ExitInitializationMode"));
+  auto* set_real = reinterpret_cast<fmi2SetRealTYPE*>(fn("fmi2SetReal"));
+  auto* get_real = reinterpret_cast<fmi2GetRealTYPE*>(fn("fmi2GetReal"));
+  auto* do_step = reinterpret_cast<fmi2DoStepTYPE*>(fn("fmi2DoStep"));
+  auto* free_instance = reinterpret_cast<fmi2FreeInstanceTYPE*>(fn("fmi2FreeInstance"));
+  auto* get_state = reinterpret_cast<GetState*>(fn("fmi2GetFMUstate"));
+  auto* set_state = reinterpret_cast<SetState*>(fn("fmi2SetFMUstate"));
+  auto* free_state = reinterpret_cast<GetState*>(fn("fmi2FreeFMUstate"));
+  auto* state_size = reinterpret_cast<StateSize*>(fn("fmi2SerializedFMUstateSize"));
+  auto* serialize = reinterpret_cast<Serialize*>(fn("fmi2SerializeFMUstate"));
+  auto* deserialize = reinterpret_cast<Deserialize*>(fn("fmi2DeSerializeFMUstate"));
+
+  fmi2CallbackFunctions callbacks{};
+  const std::string resources = archive.resource_location();
+  const auto start = [&] {
+    fmi2Component c = instantiate("tacho", fmi2CoSimulation, d.instantiation_token.c_str(), resources.c_str(), &callbacks,
+                                  fmi2False, fmi2False);
+    EXPECT_NE(c, nullptr);
+    EXPECT_EQ(setup(c, fmi2False, 0.0, 0.0, fmi2True, 1.0), fmi2OK);
+    EXPECT_EQ(enter(c), fmi2OK);
+    EXPECT_EQ(exit(c), fmi2OK);
+    return c;
+  };
+  std::vector<fmi2ValueReference> inputs, outputs;
+  for (const auto& v : d.variables) {
+    if (v.causality == fmi::Causality::input) inputs.push_back(v.value_reference);
+    if (v.causality == fmi::Causality::output) outputs.push_back(v.value_reference);
+  }
+  const double h = scene.time.step;
+  // Steps k0 .. k0+n-1 of component c, inputs a sine per input; the outputs after each.
+  const auto run = [&](fmi2Component c, int k0, int n) {
+    std::vector<double> trace, u(inputs.size()), y(outputs.size());
+    for (int k = k0; k < k0 + n; ++k) {
+      for (std::size_t i = 0; i < u.size(); ++i) u[i] = 0.3 * (i + 1) * std::sin(2 * std::numbers::pi * 60.0 * (i + 1) * k * h);
+      EXPECT_EQ(set_real(c, inputs.data(), inputs.size(), u.data()), fmi2OK);
+      EXPECT_EQ(do_step(c, k * h, (k + 1) * h - k * h, fmi2True), fmi2OK);
+      EXPECT_EQ(get_real(c, outputs.data(), outputs.size(), y.data()), fmi2OK);
+      trace.insert(trace.end(), y.begin(), y.end());
+    }
+    return trace;
+  };
+  fmi2Component first = start();
+  run(first, 0, 200);
+  fmi2FMUstate at_200 = nullptr;
+  ASSERT_EQ(get_state(first, &at_200), fmi2OK);
+  const std::vector<double> recorded = run(first, 200, 200);
+
+  size_t size = 0;
+  ASSERT_EQ(state_size(first, at_200, &size), fmi2OK);
+  std::vector<char> bytes(size);
+  ASSERT_EQ(serialize(first, at_200, bytes.data(), size), fmi2OK);
+  fmi2FMUstate read_back = nullptr;
+  ASSERT_EQ(deserialize(first, bytes.data(), size, &read_back), fmi2OK);
+
+  ASSERT_EQ(set_state(first, read_back), fmi2OK);  // rollback
+  const std::vector<double> again = run(first, 200, 200);
+  EXPECT_EQ(std::memcmp(again.data(), recorded.data(), recorded.size() * sizeof(double)), 0);
+
+  fmi2Component second = start();  // a fresh instance, set to the state of another
+  ASSERT_EQ(set_state(second, read_back), fmi2OK);
+  const std::vector<double> moved = run(second, 200, 200);
+  EXPECT_EQ(std::memcmp(moved.data(), recorded.data(), recorded.size() * sizeof(double)), 0);
+  EXPECT_GT(std::abs(recorded.back() - recorded[outputs.size() - 1]), 0.0);  // the outputs moved
+
+  EXPECT_EQ(free_state(first, &at_200), fmi2OK);
+  EXPECT_EQ(free_state(first, &read_back), fmi2OK);
+  EXPECT_EQ(read_back, nullptr);
+  free_instance(first);
+  free_instance(second);
+  dlclose(library);
 }
 
 // The command end to end: `mechsim fmu export` writes an FMU the importer opens (with the

@@ -103,6 +103,20 @@ class ExportedParticipant {
   double time() const { return t_; }
   bool initialized() const { return integrator_ != nullptr; }
 
+  // FMU state (fmiXGet/SetFMUstate, fmiXSerializeFMUstate): time, integrator state, the
+  // block's discrete state (mode, samples) and the inputs set last. Since every step
+  // restarts the integrator at its start, a participant set back to a state continues
+  // exactly as it did from there: same bytes. Only after initialization ends.
+  struct State {
+    double t = 0.0;
+    std::vector<double> x, discrete, u;
+  };
+  State state() const;
+  void set_state(const State& s);
+  // Serialized: doubles, each field preceded by its length.
+  static std::vector<unsigned char> serialize(const State& s);
+  static State deserialize(const unsigned char* bytes, std::size_t size);
+
  private:
   void rebuild_block();
   void refresh_outputs();
