@@ -24,6 +24,6 @@ for v in 2 3; do
 done
 params='parameters: {position_gain: 40 1/s, velocity_gain: 10, integral_time: 10 ms, antiwindup_time: 5 ms, tacho_filter_time: 0.3 ms, voltage_limit: 50 V, step_distance: 0.1 mm}'
 "$build/bin/mechsim-bench-fmu" --scene "$scene" --rounds "$rounds" --end "$end" \
-  --fmu "me_fmi2={file: $PWD/$build/tests/fmus/servo_amplifier_fmi2_me.fmu, interface: model-exchange, $params}" \
+  --fmu "me_fmi2={file: $(cd "$build" && pwd)/tests/fmus/servo_amplifier_fmi2_me.fmu, interface: model-exchange, $params}" \
   --fmu "export_fmi2={file: $tmp/servo_fmi2.fmu, interface: co-simulation}" \
   --fmu "export_fmi3={file: $tmp/servo_fmi3.fmu, interface: co-simulation}"
