@@ -1,16 +1,63 @@
-// `mechsim fmu info FILE`: what an FMU is, the first thing to run on a new one (docs/fmi.md).
+// `mechsim fmu info FILE`: what an FMU is, the first thing to run on a new one, and
+// `mechsim fmu export TYPE --scene S --participant P -o F.fmu`: a participant as a
+// co-simulation FMU (docs/fmi.md).
 #include <cstdio>
 #include <memory>
 
 #include "commands.h"
 #include "fmu_info.h"
+#include "mechsim/config/scene.h"
+#include "mechsim/fmi_export/fmu_writer.h"
 #include "json_io.h"
 #include "provenance.h"
 
 namespace mechsim::tools {
 
+namespace {
+
+void add_fmu_export_command(CLI::App* fmu, int& exit_code) {
+  struct Options {
+    fmi_export::ExportRequest request;
+    std::string scene;
+    std::vector<std::string> sets;
+  };
+  auto o = std::make_shared<Options>();
+  auto* cmd = fmu->add_subcommand(
+      "export",
+      "write a co-simulation FMU (FMI 2.0 or 3.0) of a scene's participant: its block with the scene's parameters and "
+      "its own integrator inside the step (Linux x86-64; the FMU carries what it needs beyond libc and libstdc++)");
+  cmd->add_option("type", o->request.type, "the participant's node type (servo_amplifier, tachometer, cam_shaft, ...)")
+      ->required();
+  cmd->add_option("--scene", o->scene, "the scene (YAML) the participant is taken from")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--participant", o->request.participant, "the participant's name in the scene")->required();
+  cmd->add_option("-o,--output", o->request.output, "the FMU file to write (.fmu)")->required();
+  cmd->add_option("--fmi", o->request.fmi_version, "FMI version: 2 or 3 (default 2)")->check(CLI::IsMember({2, 3}));
+  cmd->add_option("--set", o->sets, "override a scene value, repeatable: 'participants.servo.params.position_gain=30 1/s'");
+  cmd->add_option("--binary", o->request.binary,
+                  "the prebuilt FMU binary to pack (default: mechsim_fmu.so next to this executable, or $MECHSIM_FMU_BINARY)");
+  cmd->callback([o, &exit_code] {
+    try {
+      if (o->request.binary.empty()) o->request.binary = fmi_export::default_fmu_binary();
+      if (o->request.binary.empty())
+        throw std::runtime_error("no FMU binary found: expected mechsim_fmu.so next to the mechsim executable (build target "
+                                 "mechsim_fmu), or give --binary / $MECHSIM_FMU_BINARY");
+      const config::Scene scene = config::load_scene(o->scene, o->sets);
+      const fmi_export::ExportConfig config = fmi_export::export_config(scene, o->request);
+      fmi_export::write_fmu(config, o->request);
+      std::printf("wrote %s: participant '%s' (%s) as an FMI %d.0 co-simulation FMU\n", o->request.output.c_str(),
+                  config.participant.c_str(), config.type.c_str(), o->request.fmi_version);
+      exit_code = 0;
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "mechsim fmu export: %s\n", e.what());
+      exit_code = 1;
+    }
+  });
+}
+
+}  // namespace
+
 void add_fmu_command(CLI::App& app, int& exit_code) {
-  auto* fmu = app.add_subcommand("fmu", "Functional Mock-up Units (FMI 2.0 and 3.0): info");
+  auto* fmu = app.add_subcommand("fmu", "Functional Mock-up Units (FMI 2.0 and 3.0): info, export");
   fmu->require_subcommand(1);
 
   auto* info = fmu->add_subcommand(
@@ -40,6 +87,8 @@ void add_fmu_command(CLI::App& app, int& exit_code) {
       exit_code = 1;
     }
   });
+
+  add_fmu_export_command(fmu, exit_code);
 }
 
 }  // namespace mechsim::tools
