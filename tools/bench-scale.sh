@@ -14,6 +14,8 @@
 #     --end "4 s"     simulated time per run      --build build   build folder
 #     --layouts "cyclone fastdds mixed"           --hosts "1 2 4" host counts (2, 4 need root)
 #     --out DIR       CSV, PNG and the raw runs (default bench-scale-<date>)
+#     --groups G      G process groups (docs/scenes.md), participant i of the scene in group
+#                     i mod G, instead of a process per participant (one host only)
 #     --variant NAME=BUILD[:HOME]   repeatable: compare builds (before/after) in the same
 #                     rounds; HOME is the project folder whose config/dds the build uses
 #                     (MECHSIM_HOME). Without it: one variant, the --build folder.
@@ -25,12 +27,12 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 family=tools/scale-scene.sh ks="1 2 4 8 16" runs=3 end="4 s" build=build
 layouts="cyclone fastdds mixed" hosts="1" out="bench-scale-$(date +%Y%m%d-%H%M%S)"
-variants=()
+variants=() groups=0
 while [ $# -gt 0 ]; do
   case "$1" in
     --family) family=$2 ;; --ks) ks=$2 ;; --runs) runs=$2 ;; --end) end=$2 ;; --build) build=$2 ;;
-    --layouts) layouts=$2 ;; --hosts) hosts=$2 ;; --out) out=$2 ;; --variant) variants+=("$2") ;;
-    -h|--help) sed -n '2,24p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    --layouts) layouts=$2 ;; --hosts) hosts=$2 ;; --out) out=$2 ;; --variant) variants+=("$2") ;; --groups) groups=$2 ;;
+    -h|--help) sed -n '2,26p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "bench-scale: unknown option '$1' (see --help)" >&2; exit 2 ;;
   esac
   shift 2
@@ -75,6 +77,7 @@ if [ "$max_hosts" -gt 1 ]; then
     agent_pids+=("$(pgrep -f -- "--address 10.77.0.$h " | while read -r p; do
       [ "$(cat /proc/$p/comm 2>/dev/null)" = mechsim ] && echo "$p"; done | head -1)")
   done
+  echo "bench-scale: agents (pids ${agent_pids[*]}) on hosts 2..$max_hosts, domain $domain" >&2
 fi
 # CPU seconds (self + reaped children) of the agents: their nodes' CPU in a multi-host run.
 agents_cpu() {
@@ -87,15 +90,26 @@ agents_cpu() {
   echo "$total"
 }
 letters=(a b c d e f g h)
+participants_of() {
+  awk '/^participants:/{on=1; next} on && /^[^ #]/{on=0} on && /^  [A-Za-z0-9_]+:/{sub(/:.*/, ""); print $1}' "$1"
+}
 # --set options placing participant i of the scene on host (i mod H).
 host_args() {
   local scene=$1 h=$2 i=0 p args=(--set "dds.domain=$domain")
   for j in $(seq 1 "$h"); do args+=(--set "hosts.${letters[$((j - 1))]}.address=10.77.0.$j"); done
-  for p in $(awk '/^participants:/{on=1; next} on && /^[^ #]/{on=0} on && /^  [A-Za-z0-9_]+:/{sub(/:.*/, ""); print $1}' "$scene"); do
+  for p in $(participants_of "$scene"); do
     args+=(--set "participants.$p.host=${letters[$((i % h))]}")
     i=$((i + 1))
   done
   printf '%s\n' "${args[@]}"
+}
+# --set options putting participant i of the scene into process group (i mod G).
+group_args() {
+  local scene=$1 g=$2 i=0 p
+  for p in $(participants_of "$scene"); do
+    printf '%s\n' --set "participants.$p.process=g$((i % g))"
+    i=$((i + 1))
+  done
 }
 
 echo "variant,hosts,layout,K,round,participants,steps,wall_s,user_s,sys_s,ok" > "$out/runs.csv"
@@ -112,6 +126,11 @@ for r in $(seq 1 "$runs"); do
         cmd=(env ${vhome:+MECHSIM_HOME=$vhome} "$vmechsim" launch "$scene" --end "$end" --dds "$layout" --no-plot --no-progress --runs-dir "$out/runs"
              --json "$out/$tag.json")
         before=0
+        if [ "$groups" -gt 0 ]; then
+          [ "$h" -eq 1 ] || { echo "bench-scale: --groups is for one host only (a group member cannot name a host)" >&2; exit 2; }
+          mapfile -t extra < <(group_args "$scene" "$groups")
+          cmd+=("${extra[@]}")
+        fi
         if [ "$h" -gt 1 ]; then
           mapfile -t extra < <(host_args "$scene" "$h")
           cmd=(tools/netns-hosts.sh exec 1 "${cmd[@]}" "${extra[@]}")
