@@ -12,7 +12,8 @@
 #                     (default tools/scale-scene.sh: K independent cam_press pairs)
 #     --ks "1 2 4 8 16"   the K values            --runs 3        runs per point
 #     --end "4 s"     simulated time per run      --build build   build folder
-#     --layouts "cyclone fastdds mixed"           --hosts "1 2 4" host counts (2, 4 need root)
+#     --layouts "cyclone fastdds mixed"           --hosts "1 2 4" host counts (default:
+#                     "1 2 4" as root, else "1"; 2 and 4 need root)
 #     --out DIR       CSV, PNG and the raw runs (default bench-scale-<date>)
 #     --groups G      G process groups (docs/scenes.md), participant i of the scene in group
 #                     i mod G, instead of a process per participant (one host only)
@@ -26,17 +27,19 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 family=tools/scale-scene.sh ks="1 2 4 8 16" runs=3 end="4 s" build=build
-layouts="cyclone fastdds mixed" hosts="1" out="bench-scale-$(date +%Y%m%d-%H%M%S)"
-variants=() groups=0
+layouts="cyclone fastdds mixed" hosts="1 2 4" out="bench-scale-$(date +%Y%m%d-%H%M%S)"
+variants=() groups=0 hosts_set=0
+[ "$(id -u)" -eq 0 ] || hosts="1"
 while [ $# -gt 0 ]; do
   case "$1" in
     --family) family=$2 ;; --ks) ks=$2 ;; --runs) runs=$2 ;; --end) end=$2 ;; --build) build=$2 ;;
-    --layouts) layouts=$2 ;; --hosts) hosts=$2 ;; --out) out=$2 ;; --variant) variants+=("$2") ;; --groups) groups=$2 ;;
+    --layouts) layouts=$2 ;; --hosts) hosts=$2 hosts_set=1 ;; --out) out=$2 ;; --variant) variants+=("$2") ;; --groups) groups=$2 ;;
     -h|--help) sed -n '2,26p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "bench-scale: unknown option '$1' (see --help)" >&2; exit 2 ;;
   esac
   shift 2
 done
+[ "$groups" -gt 0 ] && [ "$hosts_set" -eq 0 ] && hosts="1"  # groups run on one host
 [ ${#variants[@]} -gt 0 ] || variants=("$(basename "$build")=$build")
 for v in "${variants[@]}"; do
   b=${v#*=}; b=${b%%:*}
