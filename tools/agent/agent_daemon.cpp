@@ -55,12 +55,6 @@ std::string read_file(const fs::path& path) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-void write_file(const fs::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-  if (!out) throw std::runtime_error(path.string() + ": cannot write");
-}
-
 // One run a launcher asked this agent to take part in.
 struct AgentRun {
   std::uint64_t run_id = 0;
@@ -170,7 +164,10 @@ void Agent::start_node(const transport::AgentMessage& m) {
   try {
     run.folder = fs::path(opt_.work_dir) / folder_name;
     fs::create_directories(run.folder);
-    write_file(run.folder / "scene.yaml", request.value("scene_yaml", ""));
+    // Replaced, not rewritten in place: every node of the run comes with its own start
+    // request, and rewriting truncated the file under a node of the same run that was
+    // reading it ("expected a scene": 1 run in 8 with 4-8 nodes per agent; performance.md).
+    hostrun::write_file_replacing((run.folder / "scene.yaml").string(), request.value("scene_yaml", ""));
     transport::UnicastNetwork network{request.value("address", ""), request.value("peers", std::vector<std::string>{}),
                                       request.value("lease_s", 5.0)};
     // A cut the run is meant to survive must not make this agent stop its nodes either.

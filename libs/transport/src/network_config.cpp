@@ -28,7 +28,7 @@ std::string cyclone_unicast_config(const UnicastNetwork& network) {
          "    </Discovery>\n"
          "    <!-- fast repair of lost samples, as config/dds/cyclonedds-loopback.xml (docs/faults.md) -->\n"
          "    <Internal>\n"
-         "      <HeartbeatInterval min=\"1ms\" minsched=\"1ms\" max=\"10ms\">1ms</HeartbeatInterval>\n"
+         "      <HeartbeatInterval min=\"5ms\" minsched=\"5ms\" max=\"50ms\">5ms</HeartbeatInterval>\n"
          "      <NackDelay>0ms</NackDelay>\n"
          "      <AutoReschedNackDelay>2ms</AutoReschedNackDelay>\n"
          "    </Internal>\n"

@@ -15,9 +15,15 @@ bool stopped(const std::atomic<bool>* stop_requested) { return stop_requested &&
 // Not the waitset: a partner that started first may already have sent its step 0, which
 // these waits do not take, so the waitset would return at once and this thread would spin;
 // under SCHED_FIFO on a pinned CPU that spin starves the node's own DDS receive thread,
-// which would deliver the command (a livelock, seen here). A 1 ms sleep is early enough:
-// step 0 is due 50 ms after the start command.
-void nap(const NodeStatus& status) { std::this_thread::sleep_for(std::min(status.until_next(), std::chrono::nanoseconds(1'000'000))); }
+// which would deliver the command (a livelock, seen here). A 2 ms sleep is early enough:
+// step 0 is due 50 ms after the start command. Until this node is matched, 10 ms: discovery
+// takes tens of milliseconds to seconds, and with 32 nodes polling every 1 ms their
+// wake-ups competed with discovery for the cores and made the start cost grow with the
+// square of the participants (docs/performance.md).
+constexpr std::chrono::nanoseconds kNapMatching{10'000'000}, kNapReady{2'000'000}, kNapResume{1'000'000};
+void nap(const NodeStatus& status, std::chrono::nanoseconds longest) {
+  std::this_thread::sleep_for(std::min(status.until_next(), longest));
+}
 
 }  // namespace
 
@@ -45,7 +51,7 @@ std::optional<transport::ControlMessage> await_start(NodeEndpoints& io, ControlI
       start = *c;
     }
     status.tick();
-    if (!start) nap(status);
+    if (!start) nap(status, ready ? kNapReady : kNapMatching);
   }
   return start;
 }
@@ -60,7 +66,7 @@ bool await_resume(ControlInbox& control, NodeStatus& status, std::int32_t genera
         throw std::runtime_error("a second rollback (generation " + std::to_string(c->generation) + ") before the run resumed");
     }
     status.tick();
-    nap(status);
+    nap(status, kNapResume);
   }
 }
 

@@ -175,9 +175,13 @@ struct FastCore {
     //
     // Lost samples (docs/faults.md): in lock-step nothing follows a lost sample until it is
     // repaired, so the repair waits for the writer's next heartbeat, the reader's NACK and
-    // the writer's answer. A 1 ms period and no deliberate delays on either side (default
-    // 5 ms each) make a repair cost ~1-2 ms instead of ~15 ms.
-    qos.reliable_writer_qos().times.heartbeatPeriod = Duration_t(0, 1'000'000);
+    // the writer's answer. A 5 ms period and no deliberate delays on either side (default
+    // 5 ms each) make a repair cost ~5 ms instead of ~15 ms. Not 1 ms: a lock-step sample
+    // stays unacknowledged until the next heartbeat, so every writer heartbeats (and its
+    // reader answers) once per period of wall time for as long as the run lasts; when many
+    // participants share the cores a step takes longer and this traffic per step grows
+    // with the participants (docs/performance.md).
+    qos.reliable_writer_qos().times.heartbeatPeriod = Duration_t(0, 5'000'000);
     qos.reliable_writer_qos().times.nackResponseDelay = Duration_t(0, 0);
     return check(publisher->create_datawriter(t, qos), "create writer on " + topic_name);
   }
