@@ -136,13 +136,13 @@ std::string line_shaft_scene(const LineShaftOptions& o) {
     append(out, "  - {from: cam_%d, to: follower_%d, order: jacobi, reconstruction: linear}\n", k, k);
   }
   if (K > 1)
-    out += "  # The segments: each station reads the upstream shaft's angle and speed and sends back the\n"
+    out += "  # The segments: each station reads the upstream shaft's speed and sends back the\n"
            "  # torque its segment takes; both ways Jacobi, extrapolated linearly, so every station\n"
            "  # steps in parallel (the critical path does not grow with K).\n";
   for (int k = 2; k <= K; ++k) {
     append(out,
-           "  - {from: cam_%d, to: cam_%d, fields: [angle, speed], order: jacobi, reconstruction: linear,\n"
-           "     initial: {angle: 0 rad, speed: %.9g rad/s}}\n",
+           "  - {from: cam_%d, to: cam_%d, fields: [speed], order: jacobi, reconstruction: linear,\n"
+           "     initial: {speed: %.9g rad/s}}\n",
            k - 1, k, kInitialShaftSpeed);
     append(out, "  - {from: cam_%d, to: cam_%d, fields: [drive_load_torque], order: jacobi, reconstruction: linear}\n", k,
            k - 1);

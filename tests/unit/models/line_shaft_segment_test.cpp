@@ -1,6 +1,6 @@
 // A cam shaft driven through an elastic line-shaft segment (drive: shaft_segment,
 // docs/line-shaft.md) and a geared shaft handing a downstream segment's torque back:
-// ports, the equation (I + J_r) ω̇ = k q + c q̇ − M_rest − T_down, the segment's energy
+// ports, the equations (I + J_r) ω̇ = k q + c q̇ − M_rest − T_down, q̇ = ω_u − ω, the segment's energy
 // outputs, and the energy balance of a shaft wound up against a load.
 #include <gtest/gtest.h>
 
@@ -30,13 +30,11 @@ CamShaftParams segment_driven(double stiffness = k_seg, double damping = c_seg) 
 TEST(LineShaftSegment, DeclaresStatesAndRequiredUpstreamInputs) {
   const CamShaftBlock b(segment_driven());
   EXPECT_TRUE(b.is_segment_driven());
-  EXPECT_EQ(b.state_names(), (std::vector<std::string>{"angle", "speed"}));
-  const int angle = b.input_index("drive_angle"), speed = b.input_index("drive_speed");
-  const int down = b.input_index("downstream_torque");
-  ASSERT_GE(angle, 0);
+  EXPECT_EQ(b.state_names(), (std::vector<std::string>{"angle", "speed", "twist"}));
+  const int speed = b.input_index("drive_speed"), down = b.input_index("downstream_torque");
+  EXPECT_EQ(b.input_index("drive_angle"), -1);  // the twist is integrated from the speeds
   ASSERT_GE(speed, 0);
   ASSERT_GE(down, 0);
-  EXPECT_TRUE(b.inputs()[angle].required);
   EXPECT_TRUE(b.inputs()[speed].required);
   EXPECT_FALSE(b.inputs()[down].required);
   EXPECT_EQ(b.inputs()[down].default_value, 0.0);
@@ -44,25 +42,26 @@ TEST(LineShaftSegment, DeclaresStatesAndRequiredUpstreamInputs) {
   // shaft can read each other both ways without an algebraic loop.
   EXPECT_TRUE(b.outputs()[b.output_index("angle")].feedthrough.empty());
   EXPECT_TRUE(b.outputs()[b.output_index("speed")].feedthrough.empty());
-  EXPECT_EQ(b.outputs()[b.output_index("drive_load_torque")].feedthrough, (std::vector<int>{angle, speed}));
-  std::vector<double> x(2);
+  EXPECT_EQ(b.outputs()[b.output_index("drive_load_torque")].feedthrough, (std::vector<int>{speed}));
+  std::vector<double> x(3, -1.0);
   b.initial_state(0.0, x);
   EXPECT_EQ(x[0], 0.0);
   EXPECT_EQ(x[1], 9.8);
+  EXPECT_EQ(x[2], 0.0);  // untwisted at the start
 }
 
 TEST(LineShaftSegment, EquationAndOutputs) {
   const CamShaftBlock b(segment_driven());
-  std::vector<double> u(b.num_inputs(), 0.0), x{1.0, 9.0}, dxdt(2), y(b.num_outputs());
+  std::vector<double> u(b.num_inputs(), 0.0), x{1.0, 9.0, 0.002}, dxdt(3), y(b.num_outputs());
   u[b.input_index("load_torque")] = 300.0;
   u[b.input_index("reflected_inertia")] = 0.5;
-  u[b.input_index("drive_angle")] = 1.002;  // twist 2 mrad
-  u[b.input_index("drive_speed")] = 9.1;    // twist rate 0.1 rad/s
+  u[b.input_index("drive_speed")] = 9.1;  // twist rate 0.1 rad/s
   u[b.input_index("downstream_torque")] = 50.0;
-  const double torque = k_seg * 0.002 + c_seg * 0.1;  // 420 N m, up to the rounding of the inputs
+  const double torque = k_seg * 0.002 + c_seg * 0.1;  // 420 N m, up to the rounding of 9.1 - 9
   b.derivatives(0.0, x, u, dxdt);
   EXPECT_EQ(dxdt[0], 9.0);
   EXPECT_NEAR(dxdt[1], (torque - 300.0 - 50.0) / 20.5, 1e-9);
+  EXPECT_NEAR(dxdt[2], 0.1, 1e-12);
   b.calc_outputs(3.0, x, u, y);
   EXPECT_EQ(y[b.output_index("angle")], 1.0);
   EXPECT_EQ(y[b.output_index("speed")], 9.0);
@@ -118,12 +117,9 @@ TEST(LineShaftSegment, GearHandsTheDownstreamTorqueBack) {
 TEST(LineShaftSegment, WindUpClosesTheEnergyBalance) {
   const CamShaftBlock b(segment_driven());
   const double omega_u = 10.0, load = 2000.0, h = 1e-5, t_end = 1.5;
-  std::vector<double> u(b.num_inputs(), 0.0), x{0.0, 0.0}, y(b.num_outputs());
+  std::vector<double> u(b.num_inputs(), 0.0), x{0.0, 0.0, 0.0}, y(b.num_outputs());
   u[b.input_index("load_torque")] = load;
-  const auto inputs_at = [&](double t) {
-    u[b.input_index("drive_angle")] = omega_u * t;
-    u[b.input_index("drive_speed")] = omega_u;
-  };
+  const auto inputs_at = [&](double) { u[b.input_index("drive_speed")] = omega_u; };
   // Input power, load power and damper power at (t, state).
   const auto powers = [&](double t, const std::vector<double>& state) {
     inputs_at(t);
@@ -133,18 +129,21 @@ TEST(LineShaftSegment, WindUpClosesTheEnergyBalance) {
   };
   const auto f = [&](double t, const std::vector<double>& state) {
     inputs_at(t);
-    std::vector<double> d(2);
+    std::vector<double> d(3);
     b.derivatives(t, state, u, d);
     return d;
   };
   std::vector<double> work(3, 0.0);
   for (double t = 0.0; t < t_end - h / 2; t += h) {
     const auto k1 = f(t, x);
-    const auto k2 = f(t + h / 2, {x[0] + h / 2 * k1[0], x[1] + h / 2 * k1[1]});
-    const auto k3 = f(t + h / 2, {x[0] + h / 2 * k2[0], x[1] + h / 2 * k2[1]});
-    const auto k4 = f(t + h, {x[0] + h * k3[0], x[1] + h * k3[1]});
-    const std::vector<double> next{x[0] + h / 6 * (k1[0] + 2 * k2[0] + 2 * k3[0] + k4[0]),
-                                   x[1] + h / 6 * (k1[1] + 2 * k2[1] + 2 * k3[1] + k4[1])};
+    const auto stage = [&](const std::vector<double>& k, double a) {
+      return std::vector<double>{x[0] + a * k[0], x[1] + a * k[1], x[2] + a * k[2]};
+    };
+    const auto k2 = f(t + h / 2, stage(k1, h / 2));
+    const auto k3 = f(t + h / 2, stage(k2, h / 2));
+    const auto k4 = f(t + h, stage(k3, h));
+    std::vector<double> next(3);
+    for (int i = 0; i < 3; ++i) next[i] = x[i] + h / 6 * (k1[i] + 2 * k2[i] + 2 * k3[i] + k4[i]);
     // Trapezoidal power integral on the fine grid (error ~h² P'' T / 12: ~1e-9 of the work).
     const auto p0 = powers(t, x), p1 = powers(t + h, next);
     for (int i = 0; i < 3; ++i) work[i] += h / 2 * (p0[i] + p1[i]);
@@ -154,7 +153,9 @@ TEST(LineShaftSegment, WindUpClosesTheEnergyBalance) {
   b.calc_outputs(t_end, x, u, y);
   // Settled (damping ratio c / (2 sqrt(k I)) = 0.05 of a 100 rad/s mode: e^-7.5 after 1.5 s).
   EXPECT_NEAR(x[1], omega_u, 1e-2);
-  EXPECT_NEAR(omega_u * t_end - x[0], load / k_seg, 1e-3 * load / k_seg + 1e-4);
+  EXPECT_NEAR(x[2], load / k_seg, 1e-3 * load / k_seg + 1e-4);
+  // The twist state is the angle difference: the speeds it integrates are the angles' rates.
+  EXPECT_NEAR(omega_u * t_end - x[0], x[2], 1e-9);
   const double stored = y[b.output_index("kinetic_energy")] + y[b.output_index("segment_energy")];
   const double balance = work[0] - work[1] - work[2] - stored;
   EXPECT_GT(work[2], 0.0);

@@ -158,11 +158,11 @@ NodeType cam_shaft_node_type() {
            // A gear drive: the driving shaft's speed and acceleration (docs/press-line.md).
            {transport::find_topic_type("CvtState"),
             {{"output_speed", "drive_speed"}, {"output_acceleration", "drive_acceleration"}}},
-           // A line shaft (docs/line-shaft.md): from the upstream station its angle and speed
-           // (drive: shaft_segment), from the downstream station the torque its segment takes
+           // A line shaft (docs/line-shaft.md): from the upstream station its speed (drive:
+           // shaft_segment), from the downstream station the torque its segment takes
            // (drive_load_torque). Which one a connection carries, its `fields:` says.
            {transport::find_topic_type("CamState"),
-            {{"angle", "drive_angle"}, {"speed", "drive_speed"}, {"drive_load_torque", "downstream_torque"}}}}};
+            {{"speed", "drive_speed"}, {"drive_load_torque", "downstream_torque"}}}}};
 }
 
 }  // namespace mechsim::cosim

@@ -14,7 +14,7 @@ enum Input { in_load_torque, in_reflected_inertia };
 enum Output { out_angle, out_speed, out_lift, out_lift_d1, out_lift_d2, out_pressure_angle,
               out_shaft_torque, out_drive_power, out_acceleration, out_drive_load_torque,
               out_drive_load_inertia, out_kinetic_energy, out_segment_energy, out_segment_damping_power };
-enum State { x_angle, x_speed };
+enum State { x_angle, x_speed, x_twist };
 }  // namespace
 
 CamShaftBlock::CamShaftBlock(CamShaftParams params) : Block("cam_shaft"), params_(std::move(params)) {
@@ -52,26 +52,26 @@ CamShaftBlock::CamShaftBlock(CamShaftParams params) : Block("cam_shaft"), params
   const int reflected = declare_input("reflected_inertia", "kg*m^2", 0.0);
   using Ft = std::vector<int>;
   if (is_segment_driven()) {
-    in_drive_angle_ = declare_required_input("drive_angle", "rad");
     in_drive_speed_ = declare_required_input("drive_speed", "rad/s");
     in_downstream_torque_ = declare_input("downstream_torque", "N*m", 0.0);
-    const int da = in_drive_angle_, ds = in_drive_speed_, down = in_downstream_torque_;
+    const int ds = in_drive_speed_, down = in_downstream_torque_;
     declare_output("angle", "rad");
     declare_output("speed", "rad/s");
     declare_output("lift", "m");
     declare_output("lift_d1", "m/rad");
     declare_output("lift_d2", "m/rad^2");
     declare_output("pressure_angle", "rad");
-    declare_output("shaft_torque", "N*m", {da, ds});
-    declare_output("drive_power", "W", {da, ds});
-    declare_output("acceleration", "rad/s^2", {load, reflected, da, ds, down});
-    declare_output("drive_load_torque", "N*m", {da, ds});
+    declare_output("shaft_torque", "N*m", {ds});
+    declare_output("drive_power", "W", {ds});
+    declare_output("acceleration", "rad/s^2", {load, reflected, ds, down});
+    declare_output("drive_load_torque", "N*m", {ds});
     declare_output("drive_load_inertia", "kg*m^2");
     declare_output("kinetic_energy", "J");
-    declare_output("segment_energy", "J", {da});
+    declare_output("segment_energy", "J");
     declare_output("segment_damping_power", "W", {ds});
     declare_state("angle", "rad");
     declare_state("speed", "rad/s");
+    declare_state("twist", "rad");
     return;
   }
   const int dspeed = driven ? (in_drive_speed_ = declare_input("drive_speed", "rad/s", 0.0)) : -1;
@@ -113,15 +113,18 @@ double CamShaftBlock::angular_acceleration(double speed, double load_torque_rest
 }
 
 namespace {
-// The twist of the driving segment and its rate, from the upstream shaft's angle and speed.
+// The driving segment's twist (a state), its rate from the upstream shaft's speed, its torque.
 struct SegmentState {
   double twist, twist_rate, torque;
 };
-SegmentState segment_state(const ShaftSegment& s, double upstream_angle, double upstream_speed, double angle,
-                           double speed) {
-  return {upstream_angle - angle, upstream_speed - speed, segment_torque(s, upstream_angle, upstream_speed, angle, speed)};
+SegmentState segment_state(const ShaftSegment& s, double twist, double upstream_speed, double speed) {
+  return {twist, upstream_speed - speed, segment_torque(s, twist, upstream_speed, 0.0, speed)};
 }
 }  // namespace
+
+double CamShaftBlock::segment_acceleration(double segment_torque, std::span<const double> u) const {
+  return (segment_torque - u[in_load_torque] - u[in_downstream_torque_]) / (params_.inertia_kgm2 + u[in_reflected_inertia]);
+}
 
 void CamShaftBlock::initial_state(double, std::span<double> x) const {
   if (is_driven()) {
@@ -131,6 +134,7 @@ void CamShaftBlock::initial_state(double, std::span<double> x) const {
   if (!has_dynamic_drive() && !is_segment_driven()) return;
   x[x_angle] = params_.initial_angle;
   x[x_speed] = params_.initial_speed.value_or(params_.speed);
+  if (is_segment_driven()) x[x_twist] = 0.0;  // the line starts untwisted
 }
 
 void CamShaftBlock::derivatives(double, std::span<const double> x, std::span<const double> u,
@@ -140,10 +144,10 @@ void CamShaftBlock::derivatives(double, std::span<const double> x, std::span<con
     return;
   }
   if (is_segment_driven()) {
-    const SegmentState seg = segment_state(*params_.segment, u[in_drive_angle_], u[in_drive_speed_], x[x_angle], x[x_speed]);
+    const SegmentState seg = segment_state(*params_.segment, x[x_twist], u[in_drive_speed_], x[x_speed]);
     dxdt[x_angle] = x[x_speed];
-    dxdt[x_speed] = (seg.torque - u[in_load_torque] - u[in_downstream_torque_]) /
-                    (params_.inertia_kgm2 + u[in_reflected_inertia]);
+    dxdt[x_speed] = segment_acceleration(seg.torque, u);
+    dxdt[x_twist] = seg.twist_rate;
     return;
   }
   if (!has_dynamic_drive()) return;
@@ -166,10 +170,10 @@ void CamShaftBlock::calc_outputs(double t, std::span<const double> x, std::span<
     load_torque_out = load / g;
     load_inertia_out = J / (g * g);
   } else if (is_segment_driven()) {
-    const SegmentState seg = segment_state(*params_.segment, u[in_drive_angle_], u[in_drive_speed_], x[x_angle], x[x_speed]);
+    const SegmentState seg = segment_state(*params_.segment, x[x_twist], u[in_drive_speed_], x[x_speed]);
     theta = x[x_angle];
     omega = x[x_speed];
-    omega_dot = (seg.torque - u[in_load_torque] - u[in_downstream_torque_]) / (params_.inertia_kgm2 + u[in_reflected_inertia]);
+    omega_dot = segment_acceleration(seg.torque, u);
     torque = seg.torque;
     load_torque_out = seg.torque;  // what the segment takes from the upstream shaft
     y[out_segment_energy] = segment_energy(*params_.segment, seg.twist);

@@ -62,9 +62,13 @@ struct CamShaftParams {
 // shaft (that segment's drive_load_torque). It adds to the load torque: a gear hands it back
 // to the driving shaft, a segment-driven shaft's ω̇ pays for it.
 //
-// Driven through an elastic segment (segment set, docs/line-shaft.md): states θ, ω with
-//     (I + J_r) ω̇ = T_seg − M_rest − T_down,   T_seg = k (θ_u − θ) + c (ω_u − ω)
-// from the inputs drive_angle θ_u and drive_speed ω_u (the upstream shaft's, required).
+// Driven through an elastic segment (segment set, docs/line-shaft.md): states θ, ω and the
+// segment's twist q (0 at t = 0) with
+//     (I + J_r) ω̇ = T_seg − M_rest − T_down,   q̇ = ω_u − ω,   T_seg = k q + c q̇
+// from the input drive_speed ω_u (the upstream shaft's, required). The twist is integrated
+// from the speeds rather than taken from the upstream angle: a co-simulation holds a partner's
+// first sample over the first step, and a held angle would twist a line turning at speed by
+// ω H at once (2 kN m on the shipped line); a held speed makes no such jump.
 // shaft_torque = drive_load_torque = T_seg (the torque the segment delivers here and takes
 // from upstream); extra outputs segment_energy = ½ k q² and segment_damping_power = c q̇².
 class CamShaftBlock : public Block {
@@ -91,9 +95,12 @@ class CamShaftBlock : public Block {
                               double downstream_torque = 0.0) const;
 
  private:
+  // ω̇ of a segment-driven shaft under the segment's torque and the inputs' loads.
+  double segment_acceleration(double segment_torque, std::span<const double> u) const;
+
   CamShaftParams params_;
   // Input indices of the driven modes (-1: not declared).
-  int in_drive_angle_ = -1, in_drive_speed_ = -1, in_drive_acceleration_ = -1, in_downstream_torque_ = -1;
+  int in_drive_speed_ = -1, in_drive_acceleration_ = -1, in_downstream_torque_ = -1;
 };
 
 }  // namespace mechsim::models::cam

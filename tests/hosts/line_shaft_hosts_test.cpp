@@ -1,0 +1,65 @@
+// The 16-station line shaft (docs/line-shaft.md, 34 participants) across the four namespace
+// hosts of the test bed: the line's first stations with the CVT on the launcher's host, the
+// others spread over hosts 2..4. It runs to the end with its error report, and every node's
+// outputs are the bytes of the single-host run (lock-step: placement changes no result).
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "host_bed.h"
+
+namespace mechsim::testing {
+namespace {
+
+using json = nlohmann::json;
+
+TEST_F(HostBed, SixteenStationLineShaftAcrossFourHosts) {
+  constexpr int kStations = 16;
+  start_agents(kHosts);
+  const std::string scene = (dir_ / "line_shaft_16.yaml").string();
+  const CommandResult gen = run({kMechsim, "scene", "stations", "--stations", std::to_string(kStations), "-o", scene},
+                                (dir_ / "generate.log").string(), 30);
+  ASSERT_EQ(gen.exit_code, 0) << gen.output;
+
+  const fs::path single = dir_ / "single";
+  const CommandResult one =
+      run({kMechsim, "launch", scene, "--runs-dir", single.string(), "--no-plot", "--no-progress"}, single.string() + ".log", 600);
+  ASSERT_EQ(one.exit_code, 0) << one.output;
+
+  // Stations 1..4 (with the CVT) on h1, 5..8 on h2, 9..12 on h3, 13..16 on h4: every
+  // segment between neighbouring groups crosses a host boundary both ways.
+  const fs::path multi = dir_ / "multi";
+  std::vector<std::string> argv{ip_command(), "netns", "exec", ns(1), kMechsim, "launch", scene, "--runs-dir", multi.string(),
+                                "--no-plot", "--no-progress", "--set", "dds.domain=" + std::to_string(kDomain)};
+  for (int h = 1; h <= kHosts; ++h)
+    argv.insert(argv.end(), {"--set", "hosts.h" + std::to_string(h) + ".address=" + address(h)});
+  std::vector<std::string> participants{"cvt"};
+  for (int k = 1; k <= kStations; ++k) {
+    const std::string host = "h" + std::to_string((k - 1) / 4 + 1);
+    for (const std::string p : {"cam_" + std::to_string(k), "follower_" + std::to_string(k)}) {
+      participants.push_back(p);
+      argv.insert(argv.end(), {"--set", "participants." + p + ".host=" + host});
+    }
+  }
+  argv.insert(argv.end(), {"--set", "participants.cvt.host=h1"});
+  const CommandResult across = run(argv, multi.string() + ".log", 900);
+  ASSERT_EQ(across.exit_code, 0) << across.output << "\nagent logs in " << dir_;
+
+  const fs::path a = only_run_folder(single), b = only_run_folder(multi);
+  ASSERT_FALSE(a.empty());
+  ASSERT_FALSE(b.empty());
+  const json summary = json::parse(slurp((b / "summary.json").string()));
+  EXPECT_EQ(summary["status"], "ok");
+  EXPECT_EQ(summary["hosts"]["agents"].size(), static_cast<std::size_t>(kHosts - 1)) << summary["hosts"].dump();
+  // The error report is there, and as on loopback (line_shaft_test) within 1 % of range.
+  ASSERT_TRUE(summary["signals"].is_object());
+  EXPECT_GT(summary["signals"].size(), static_cast<std::size_t>(kStations));
+  for (const auto& [name, sig] : summary["signals"].items())
+    if (!sig["max_rel_error"].is_null()) EXPECT_LT(sig["max_rel_error"].get<double>(), 1e-2) << name;
+  expect_identical_node_outputs(a, b, participants, "the single-host and the four-host run");
+}
+
+}  // namespace
+}  // namespace mechsim::testing
