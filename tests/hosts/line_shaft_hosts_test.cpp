@@ -25,14 +25,15 @@ TEST_F(HostBed, SixteenStationLineShaftAcrossFourHosts) {
 
   const fs::path single = dir_ / "single";
   const CommandResult one =
-      run({kMechsim, "launch", scene, "--runs-dir", single.string(), "--no-plot", "--no-progress"}, single.string() + ".log", 600);
+      run({kMechsim, "launch", scene, "--runs-dir", single.string(), "--no-plot", "--no-progress", "--ready-timeout", "300"},
+          single.string() + ".log", 600);
   ASSERT_EQ(one.exit_code, 0) << one.output;
 
   // Stations 1..4 (with the CVT) on h1, 5..8 on h2, 9..12 on h3, 13..16 on h4: every
   // segment between neighbouring groups crosses a host boundary both ways.
   const fs::path multi = dir_ / "multi";
   std::vector<std::string> argv{ip_command(), "netns", "exec", ns(1), kMechsim, "launch", scene, "--runs-dir", multi.string(),
-                                "--no-plot", "--no-progress", "--set", "dds.domain=" + std::to_string(kDomain)};
+                                "--no-plot", "--no-progress", "--ready-timeout", "300", "--set", "dds.domain=" + std::to_string(kDomain)};
   for (int h = 1; h <= kHosts; ++h)
     argv.insert(argv.end(), {"--set", "hosts.h" + std::to_string(h) + ".address=" + address(h)});
   std::vector<std::string> participants{"cvt"};
