@@ -1,4 +1,4 @@
-// The 16-station line shaft (docs/line-shaft.md, 34 participants) across the four namespace
+// The 16-station line shaft (docs/line-shaft.md, 33 participants) across the four namespace
 // hosts of the test bed: the line's first stations with the CVT on the launcher's host, the
 // others spread over hosts 2..4. It runs to the end with its error report, and every node's
 // outputs are the bytes of the single-host run (lock-step: placement changes no result).

@@ -15,7 +15,7 @@ void add_scene_command(CLI::App& app, int& exit_code) {
   cmd->require_subcommand(1);
   auto* stations = cmd->add_subcommand(
       "stations", "The press line with K cam stations on one line shaft, elastic segments between them "
-                  "(docs/line-shaft.md); 2 + 2 K participants");
+                  "(docs/line-shaft.md); 1 + 2 K participants");
   struct Args {
     LineShaftOptions options;
     std::string output;

@@ -118,7 +118,7 @@ std::string line_shaft_scene(const LineShaftOptions& o) {
   out += "# CVT, 10:1 gear and press cam (station 1, as in press_line.yaml) drive a line shaft with\n";
   append(out, "# %d cam station%s; each further station is driven from the one before through an elastic\n", K,
          K > 1 ? "s" : "");
-  out += "# shaft segment (cam_k drive: shaft_segment). 2 + 2 K participants.\n";
+  out += "# shaft segment (cam_k drive: shaft_segment). 1 + 2 K participants.\n";
   append(out, "scene: line_shaft_%d\n", K);
   append(out, "description: Press line with %d cam station%s on one line shaft (elastic segments %.3g N m/rad)\n", K,
          K > 1 ? "s" : "", o.segment_stiffness);
