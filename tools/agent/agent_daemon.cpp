@@ -21,6 +21,7 @@
 #include <stdexcept>
 
 #include "agent_protocol.h"
+#include "atomic_file.h"
 #include "hosts.h"
 #include "mechsim/config/scene.h"
 #include "mechsim/cosim/catalog.h"
@@ -55,11 +56,10 @@ std::string read_file(const fs::path& path) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-void write_file(const fs::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-  if (!out) throw std::runtime_error(path.string() + ": cannot write");
-}
+// Atomically: the scene file is written again for each node started in the run's folder
+// while the nodes started before may be reading it (a truncated scene refused by a node
+// that read it halfway, seen with 8 nodes on one host).
+void write_file(const fs::path& path, const std::string& text) { tools::write_file_atomically(path.string(), text); }
 
 // One run a launcher asked this agent to take part in.
 struct AgentRun {

@@ -1,5 +1,7 @@
 #include "hosts.h"
 
+#include "atomic_file.h"
+
 #include <arpa/inet.h>
 #include <ifaddrs.h>
 #include <net/if.h>
@@ -54,10 +56,10 @@ std::vector<std::string> write_unicast_dds_files(const std::string& dir, const t
   namespace fs = std::filesystem;
   const fs::path folder = fs::absolute(dir);
   fs::create_directories(folder);
+  // Atomically: an agent writes them again for each node it starts in the run's folder while
+  // the nodes started before may be reading them (16 stations on a host showed it).
   auto write = [](const fs::path& path, const std::string& text) {
-    std::ofstream out(path, std::ios::binary);
-    out << text;
-    if (!out) throw std::runtime_error(path.string() + ": cannot write the DDS configuration");
+    tools::write_file_atomically(path.string(), text);
     return path.string();
   };
   return {"CYCLONEDDS_URI=file://" + write(folder / "cyclonedds.xml", transport::cyclone_unicast_config(network)),
