@@ -21,6 +21,7 @@
 #include <stdexcept>
 
 #include "agent_protocol.h"
+#include "atomic_file.h"
 #include "hosts.h"
 #include "mechsim/config/scene.h"
 #include "mechsim/cosim/catalog.h"
@@ -54,6 +55,9 @@ std::string read_file(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
+
+// Atomically: see Agent::start_node.
+void write_file(const fs::path& path, const std::string& text) { tools::write_file_atomically(path.string(), text); }
 
 // One run a launcher asked this agent to take part in.
 struct AgentRun {
@@ -167,7 +171,7 @@ void Agent::start_node(const transport::AgentMessage& m) {
     // Replaced, not rewritten in place: every node of the run comes with its own start
     // request, and rewriting truncated the file under a node of the same run that was
     // reading it ("expected a scene": 1 run in 8 with 4-8 nodes per agent; performance.md).
-    hostrun::write_file_replacing((run.folder / "scene.yaml").string(), request.value("scene_yaml", ""));
+    write_file(run.folder / "scene.yaml", request.value("scene_yaml", ""));
     transport::UnicastNetwork network{request.value("address", ""), request.value("peers", std::vector<std::string>{}),
                                       request.value("lease_s", 5.0)};
     // A cut the run is meant to survive must not make this agent stop its nodes either.

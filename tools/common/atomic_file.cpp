@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -10,8 +11,10 @@
 namespace mechsim::tools {
 
 void write_file_atomically(const std::string& path, std::string_view contents) {
-  // The pid keeps concurrent writers (one per node process) off each other's temp file.
-  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
+  // The pid and a per-process count keep concurrent writers (node processes, an agent's
+  // threads) off each other's temporary file.
+  static std::atomic<unsigned> count{0};
+  const std::string tmp = path + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(count++);
   std::FILE* f = std::fopen(tmp.c_str(), "wb");
   if (!f) throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
   bool ok = std::fwrite(contents.data(), 1, contents.size(), f) == contents.size();

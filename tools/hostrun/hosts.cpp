@@ -1,5 +1,7 @@
 #include "hosts.h"
 
+#include "atomic_file.h"
+
 #include <arpa/inet.h>
 #include <ifaddrs.h>
 #include <net/if.h>
@@ -52,30 +54,14 @@ std::string join(const std::vector<std::string>& items, const std::string& separ
   return out;
 }
 
-void write_file_replacing(const std::string& path, const std::string& text) {
-  // Unique beside the target per process and call: two writers never share the temporary.
-  static std::atomic<unsigned> counter{0};
-  const std::string temporary = path + ".tmp" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
-  {
-    std::ofstream out(temporary, std::ios::binary);
-    out << text;
-    if (!out) throw std::runtime_error(path + ": cannot write");
-  }
-  std::error_code ec;
-  std::filesystem::rename(temporary, path, ec);
-  if (ec) {
-    std::filesystem::remove(temporary, ec);
-    throw std::runtime_error(path + ": cannot write");
-  }
-}
-
 std::vector<std::string> write_unicast_dds_files(const std::string& dir, const transport::UnicastNetwork& network) {
   namespace fs = std::filesystem;
   const fs::path folder = fs::absolute(dir);
   fs::create_directories(folder);
-  // Replaced, not rewritten in place: an agent writes them again for every node it starts.
+  // Atomically: an agent writes them again for each node it starts in the run's folder while
+  // the nodes started before may be reading them (16 stations on a host showed it).
   auto write = [](const fs::path& path, const std::string& text) {
-    write_file_replacing(path.string(), text);
+    tools::write_file_atomically(path.string(), text);
     return path.string();
   };
   return {"CYCLONEDDS_URI=file://" + write(folder / "cyclonedds.xml", transport::cyclone_unicast_config(network)),

@@ -28,11 +28,6 @@ struct HostLayout {
   std::map<std::string, std::string> remote;   // participant -> address of its host's agent (absent: local)
 };
 
-// Replaces `path` with `text` by writing a file beside it and renaming it over: a process
-// reading the old file (a node of the same run, started a moment before) never sees it
-// truncated. Throws std::runtime_error naming a file it cannot write.
-void write_file_replacing(const std::string& path, const std::string& text);
-
 // Writes <dir>/cyclonedds.xml and <dir>/fastdds.xml for `network` (the folder is created)
 // and returns the environment entries that point both vendors at them, absolute paths:
 // {"CYCLONEDDS_URI=file://...", "FASTRTPS_DEFAULT_PROFILES_FILE=..."}. For the launcher's own

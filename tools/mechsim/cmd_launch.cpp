@@ -17,6 +17,11 @@ void add_launch_command(CLI::App& app, int& exit_code) {
                   "DDS vendors of this run, overriding the scene: cyclone, fastdds (all participants and the "
                   "launcher on one vendor) or mixed (alternating, the launcher on cyclone)")
       ->check(CLI::IsMember({"cyclone", "fastdds", "mixed"}));
+  cmd->add_option("--ready-timeout", opt->ready_timeout_s,
+                  "seconds from the processes' start until every node must be ready (a scene of many participants "
+                  "on a busy machine needs more: docs/line-shaft.md)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--replay", opt->replays,
                   "NODE=FILE: participant NODE publishes what the MCAP recording FILE holds for its topic, step by "
                   "step in lock-step with the live nodes, instead of computing it (repeatable)");

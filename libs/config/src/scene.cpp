@@ -419,13 +419,17 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
     if (!conns->is_sequence()) conns->fail("expected a list of connections");
     for (std::size_t i = 0; i < conns->size(); ++i) {
       ConfigNode c = conns->at(i);
-      c.allow_only({"from", "to", "order", "reconstruction", "coupling", "initial"});
+      c.allow_only({"from", "to", "order", "reconstruction", "coupling", "initial", "fields"});
       ConnectionSpec spec;
       spec.from = c.string("from");
       spec.to = c.string("to");
       spec.key_path = c.path();
       spec.coupling = c.optional_child("coupling");
       spec.initial = c.optional_child("initial");
+      if (auto fields = c.optional_child("fields")) {
+        if (!fields->is_sequence() || fields->size() == 0) fields->fail("expected a list of topic field names, e.g. [angle, speed]");
+        for (std::size_t f = 0; f < fields->size(); ++f) spec.fields.push_back(fields->at(f).as_string());
+      }
       if (!scene.find_participant(spec.from)) c.child("from").fail("expected the name of a participant of this scene, got '" + spec.from + "'");
       if (!scene.find_participant(spec.to)) c.child("to").fail("expected the name of a participant of this scene, got '" + spec.to + "'");
       if (spec.from == spec.to) c.child("to").fail("expected another participant than 'from'");

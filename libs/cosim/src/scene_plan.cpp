@@ -278,7 +278,19 @@ ScenePlan ScenePlan::build_time_run(const config::Scene& scene) {
     edge.type = from.type->publishes;
     edge.order = c.order;
     edge.reconstruction = c.reconstruction;
+    for (const std::string& wanted : c.fields) {
+      bool mapped = false;
+      std::string known;
+      for (const auto& [field, input] : group->field_to_input) {
+        mapped = mapped || field == wanted;
+        known += (known.empty() ? "" : ", ") + field;
+      }
+      if (!mapped)
+        refuse(scene, c.key_path + ".fields", "expected fields of " + edge.type->idl_name + " that a " + to.type->name +
+                                                  " reads (" + known + "), got '" + wanted + "'");
+    }
     for (const auto& [field, input] : group->field_to_input) {
+      if (!c.fields.empty() && std::find(c.fields.begin(), c.fields.end(), field) == c.fields.end()) continue;
       int f = edge.type->field_index(field), i = to.block->input_index(input);
       if (f < 0) throw std::logic_error("catalog maps unknown field " + field);
       if (i < 0) continue;  // an input this configuration of the block does not use

@@ -65,6 +65,19 @@ TEST(SceneValidation, ModeOverrunAndFaultTimingsAreParsedOnce) {
   EXPECT_THROW(config::load_scene(shipped, {"participants.tacho.testing.lose_everything=true"}), config::ConfigError);
 }
 
+// `fields:` restricts what a connection carries (line shafts, docs/line-shaft.md): a field
+// the subscriber does not read, or not a list, is refused naming the key.
+TEST(SceneValidation, ConnectionFields) {
+  const std::string from = "{from: cam, to: follower, order: gauss_seidel}";
+  EXPECT_EQ(refusal(cam_press_with(from, "{from: cam, to: follower, order: gauss_seidel, fields: [angle, speed, lift, lift_d1, lift_d2, pressure_angle]}")), "");
+  expect_refused(cam_press_with(from, "{from: cam, to: follower, order: gauss_seidel, fields: [angel]}"), "connections[0].fields",
+                 "got 'angel'");
+  expect_refused(cam_press_with(from, "{from: cam, to: follower, order: gauss_seidel, fields: angle}"), "connections[0].fields",
+                 "expected a list");
+  // The pressure angle only: the follower's other required inputs are left unfed.
+  EXPECT_NE(refusal(cam_press_with(from, "{from: cam, to: follower, order: gauss_seidel, fields: [pressure_angle]}")), "");
+}
+
 TEST(SceneValidation, UnknownKeys) {
   expect_refused(cam_press_with("mass: 25 kg", "masss: 25 kg"), "participants.follower.params", "unknown key 'masss'");
   expect_refused(cam_press_with("mode: lockstep", "mood: lockstep"), "mood", "unknown key");

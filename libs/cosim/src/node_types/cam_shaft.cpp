@@ -1,5 +1,6 @@
 // Node type `cam_shaft`: the cam shaft with its motion law, pitch-curve geometry and drive,
-// publishing <name>/state (CamState). Reads the follower's drive torque and reflected inertia.
+// publishing <name>/state (CamState). Reads the follower's drive torque and reflected inertia,
+// and on a line shaft the upstream shaft's motion and the downstream segment's torque.
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -53,9 +54,10 @@ namespace {
 void parse_drive(const ConfigNode& p, cam::CamShaftParams& params) {
   const std::optional<ConfigNode> drive = p.optional_child("drive");
   if (drive && !drive->is_map())
-    drive->fail("expected a map {type: constant_speed | constant_torque | motor_line | gear, ...}");
+    drive->fail("expected a map {type: constant_speed | constant_torque | motor_line | gear | shaft_segment, ...}");
   const std::string type =
-      drive ? drive->choice("type", {"constant_speed", "constant_torque", "motor_line", "gear"}) : "constant_speed";
+      drive ? drive->choice("type", {"constant_speed", "constant_torque", "motor_line", "gear", "shaft_segment"})
+            : "constant_speed";
   if (type == "constant_speed") {
     if (drive) drive->allow_only({"type", "speed"});
     const bool inner = drive && drive->has("speed");
@@ -77,6 +79,12 @@ void parse_drive(const ConfigNode& p, cam::CamShaftParams& params) {
     if (p.has("initial_speed"))
       p.child("initial_speed").fail("expected no initial_speed with a gear drive: the driving shaft sets the speed");
     params.speed = p.non_negative_quantity_or("speed", dim::angular_velocity, 0.0);  // nominal, for the analyses
+  } else if (type == "shaft_segment") {
+    // A station of a line shaft, driven by the upstream shaft (another cam_shaft's angle and
+    // speed) through an elastic segment (docs/line-shaft.md).
+    drive->allow_only({"type", "stiffness", "damping"});
+    params.segment = cam::ShaftSegment{drive->positive_quantity("stiffness", dim::torsional_stiffness),
+                                       drive->non_negative_quantity_or("damping", dim::rotational_damping, 0.0)};
   } else if (type == "constant_torque") {
     drive->allow_only({"type", "torque"});
     params.drive.type = cam::DriveType::constant_torque;
@@ -108,7 +116,7 @@ void parse_drive(const ConfigNode& p, cam::CamShaftParams& params) {
     }
   }
   if (!(inertia > 0.0) && type != "gear")
-    p.fail("expected a shaft inertia > 0 for a torque drive: give inertia (shaft, kg m^2) and/or a flywheel");
+    p.fail("expected a shaft inertia > 0 for a torque or shaft-segment drive: give inertia (shaft, kg m^2) and/or a flywheel");
   params.inertia_kgm2 = inertia;
 }
 
@@ -149,7 +157,12 @@ NodeType cam_shaft_node_type() {
             {{"drive_torque_rest", "load_torque"}, {"reflected_inertia", "reflected_inertia"}}},
            // A gear drive: the driving shaft's speed and acceleration (docs/press-line.md).
            {transport::find_topic_type("CvtState"),
-            {{"output_speed", "drive_speed"}, {"output_acceleration", "drive_acceleration"}}}}};
+            {{"output_speed", "drive_speed"}, {"output_acceleration", "drive_acceleration"}}},
+           // A line shaft (docs/line-shaft.md): from the upstream station its speed (drive:
+           // shaft_segment), from the downstream station the torque its segment takes
+           // (drive_load_torque). Which one a connection carries, its `fields:` says.
+           {transport::find_topic_type("CamState"),
+            {{"speed", "drive_speed"}, {"drive_load_torque", "downstream_torque"}}}}};
 }
 
 }  // namespace mechsim::cosim

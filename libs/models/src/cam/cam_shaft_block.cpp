@@ -9,11 +9,12 @@ namespace mechsim::models::cam {
 
 namespace {
 // Port indices, fixed by the declaration order in the constructor.
-enum Input { in_load_torque, in_reflected_inertia, in_drive_speed, in_drive_acceleration };
+// The driven modes' inputs follow these two; their indices are members.
+enum Input { in_load_torque, in_reflected_inertia };
 enum Output { out_angle, out_speed, out_lift, out_lift_d1, out_lift_d2, out_pressure_angle,
               out_shaft_torque, out_drive_power, out_acceleration, out_drive_load_torque,
-              out_drive_load_inertia, out_kinetic_energy };
-enum State { x_angle, x_speed };
+              out_drive_load_inertia, out_kinetic_energy, out_segment_energy, out_segment_damping_power };
+enum State { x_angle, x_speed, x_twist };
 }  // namespace
 
 CamShaftBlock::CamShaftBlock(CamShaftParams params) : Block("cam_shaft"), params_(std::move(params)) {
@@ -30,6 +31,15 @@ CamShaftBlock::CamShaftBlock(CamShaftParams params) : Block("cam_shaft"), params
     throw std::invalid_argument("cam_shaft: a shaft driven through a gear has no drive torque of its own");
   if (driven && !(params_.inertia_kgm2 >= 0.0 && std::isfinite(params_.inertia_kgm2)))
     throw std::invalid_argument("cam_shaft: the shaft inertia must be finite and >= 0");
+  if (params_.segment) {
+    validate(*params_.segment);
+    if (driven || params_.drive.is_torque_source())
+      throw std::invalid_argument("cam_shaft: a shaft driven through a segment has no gear and no drive torque of its own");
+    if (!(params_.inertia_kgm2 > 0.0 && std::isfinite(params_.inertia_kgm2)))
+      throw std::invalid_argument("cam_shaft: a shaft driven through a segment needs a shaft inertia > 0");
+    if (params_.initial_speed && !std::isfinite(*params_.initial_speed))
+      throw std::invalid_argument("cam_shaft: the initial speed must be finite");
+  }
   const bool dynamic = params_.drive.is_torque_source();
   if (dynamic) {
     // Dwells reflect no follower inertia: the shaft's own inertia must carry ω̇ there.
@@ -40,9 +50,33 @@ CamShaftBlock::CamShaftBlock(CamShaftParams params) : Block("cam_shaft"), params
   }
   const int load = declare_input("load_torque", "N*m", 0.0);
   const int reflected = declare_input("reflected_inertia", "kg*m^2", 0.0);
-  const int dspeed = driven ? declare_input("drive_speed", "rad/s", 0.0) : -1;
-  const int daccel = driven ? declare_input("drive_acceleration", "rad/s^2", 0.0) : -1;
   using Ft = std::vector<int>;
+  if (is_segment_driven()) {
+    in_drive_speed_ = declare_required_input("drive_speed", "rad/s");
+    in_downstream_torque_ = declare_input("downstream_torque", "N*m", 0.0);
+    const int ds = in_drive_speed_, down = in_downstream_torque_;
+    declare_output("angle", "rad");
+    declare_output("speed", "rad/s");
+    declare_output("lift", "m");
+    declare_output("lift_d1", "m/rad");
+    declare_output("lift_d2", "m/rad^2");
+    declare_output("pressure_angle", "rad");
+    declare_output("shaft_torque", "N*m", {ds});
+    declare_output("drive_power", "W", {ds});
+    declare_output("acceleration", "rad/s^2", {load, reflected, ds, down});
+    declare_output("drive_load_torque", "N*m", {ds});
+    declare_output("drive_load_inertia", "kg*m^2");
+    declare_output("kinetic_energy", "J");
+    declare_output("segment_energy", "J");
+    declare_output("segment_damping_power", "W", {ds});
+    declare_state("angle", "rad");
+    declare_state("speed", "rad/s");
+    declare_state("twist", "rad");
+    return;
+  }
+  const int dspeed = driven ? (in_drive_speed_ = declare_input("drive_speed", "rad/s", 0.0)) : -1;
+  const int daccel = driven ? (in_drive_acceleration_ = declare_input("drive_acceleration", "rad/s^2", 0.0)) : -1;
+  const int down = driven ? (in_downstream_torque_ = declare_input("downstream_torque", "N*m", 0.0)) : -1;
   declare_output("angle", "rad");
   declare_output("speed", "rad/s", driven ? Ft{dspeed} : Ft{});
   declare_output("lift", "m");
@@ -50,10 +84,10 @@ CamShaftBlock::CamShaftBlock(CamShaftParams params) : Block("cam_shaft"), params
   declare_output("lift_d2", "m/rad^2");
   declare_output("pressure_angle", "rad");
   if (driven) {
-    declare_output("shaft_torque", "N*m", {load, reflected, daccel});
-    declare_output("drive_power", "W", {load, reflected, daccel, dspeed});
+    declare_output("shaft_torque", "N*m", {load, reflected, daccel, down});
+    declare_output("drive_power", "W", {load, reflected, daccel, dspeed, down});
     declare_output("acceleration", "rad/s^2", {daccel});
-    declare_output("drive_load_torque", "N*m", {load});
+    declare_output("drive_load_torque", "N*m", {load, down});
     declare_output("drive_load_inertia", "kg*m^2", {reflected});
     declare_output("kinetic_energy", "J", {dspeed});
     declare_state("angle", "rad");
@@ -71,9 +105,25 @@ CamShaftBlock::CamShaftBlock(CamShaftParams params) : Block("cam_shaft"), params
   }
 }
 
-double CamShaftBlock::angular_acceleration(double speed, double load_torque_rest, double reflected_inertia) const {
+double CamShaftBlock::angular_acceleration(double speed, double load_torque_rest, double reflected_inertia,
+                                           double downstream_torque) const {
   if (!has_dynamic_drive()) return 0.0;
-  return (params_.drive.torque_at(speed) - load_torque_rest) / (params_.inertia_kgm2 + reflected_inertia);
+  return (params_.drive.torque_at(speed) - load_torque_rest - downstream_torque) /
+         (params_.inertia_kgm2 + reflected_inertia);
+}
+
+namespace {
+// The driving segment's twist (a state), its rate from the upstream shaft's speed, its torque.
+struct SegmentState {
+  double twist, twist_rate, torque;
+};
+SegmentState segment_state(const ShaftSegment& s, double twist, double upstream_speed, double speed) {
+  return {twist, upstream_speed - speed, segment_torque(s, twist, upstream_speed, 0.0, speed)};
+}
+}  // namespace
+
+double CamShaftBlock::segment_acceleration(double segment_torque, std::span<const double> u) const {
+  return (segment_torque - u[in_load_torque] - u[in_downstream_torque_]) / (params_.inertia_kgm2 + u[in_reflected_inertia]);
 }
 
 void CamShaftBlock::initial_state(double, std::span<double> x) const {
@@ -81,15 +131,23 @@ void CamShaftBlock::initial_state(double, std::span<double> x) const {
     x[x_angle] = params_.initial_angle;
     return;
   }
-  if (!has_dynamic_drive()) return;
+  if (!has_dynamic_drive() && !is_segment_driven()) return;
   x[x_angle] = params_.initial_angle;
   x[x_speed] = params_.initial_speed.value_or(params_.speed);
+  if (is_segment_driven()) x[x_twist] = 0.0;  // the line starts untwisted
 }
 
 void CamShaftBlock::derivatives(double, std::span<const double> x, std::span<const double> u,
                                 std::span<double> dxdt) const {
   if (is_driven()) {
-    dxdt[x_angle] = u[in_drive_speed] / params_.gear_ratio;
+    dxdt[x_angle] = u[in_drive_speed_] / params_.gear_ratio;
+    return;
+  }
+  if (is_segment_driven()) {
+    const SegmentState seg = segment_state(*params_.segment, x[x_twist], u[in_drive_speed_], x[x_speed]);
+    dxdt[x_angle] = x[x_speed];
+    dxdt[x_speed] = segment_acceleration(seg.torque, u);
+    dxdt[x_twist] = seg.twist_rate;
     return;
   }
   if (!has_dynamic_drive()) return;
@@ -104,12 +162,22 @@ void CamShaftBlock::calc_outputs(double t, std::span<const double> x, std::span<
   if (is_driven()) {
     const double g = params_.gear_ratio;
     const double J = params_.inertia_kgm2 + u[in_reflected_inertia];
+    const double load = u[in_load_torque] + u[in_downstream_torque_];
     theta = x[x_angle];
-    omega = u[in_drive_speed] / g;
-    omega_dot = u[in_drive_acceleration] / g;
-    torque = u[in_load_torque] + J * omega_dot;  // what the gear delivers to the cam shaft
-    load_torque_out = u[in_load_torque] / g;
+    omega = u[in_drive_speed_] / g;
+    omega_dot = u[in_drive_acceleration_] / g;
+    torque = load + J * omega_dot;  // what the gear delivers to the cam shaft
+    load_torque_out = load / g;
     load_inertia_out = J / (g * g);
+  } else if (is_segment_driven()) {
+    const SegmentState seg = segment_state(*params_.segment, x[x_twist], u[in_drive_speed_], x[x_speed]);
+    theta = x[x_angle];
+    omega = x[x_speed];
+    omega_dot = segment_acceleration(seg.torque, u);
+    torque = seg.torque;
+    load_torque_out = seg.torque;  // what the segment takes from the upstream shaft
+    y[out_segment_energy] = segment_energy(*params_.segment, seg.twist);
+    y[out_segment_damping_power] = segment_damping_power(*params_.segment, seg.twist_rate);
   } else if (has_dynamic_drive()) {
     theta = x[x_angle];
     omega = x[x_speed];
@@ -140,7 +208,7 @@ void CamShaftBlock::calc_outputs(double t, std::span<const double> x, std::span<
 }
 
 std::optional<Block::UniformRotation> CamShaftBlock::uniform_rotation() const {
-  if (is_driven() || has_dynamic_drive()) return std::nullopt;
+  if (is_driven() || is_segment_driven() || has_dynamic_drive()) return std::nullopt;
   return UniformRotation{params_.initial_angle, params_.speed};
 }
 

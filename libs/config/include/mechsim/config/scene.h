@@ -120,6 +120,10 @@ struct ConnectionSpec {
   // Jacobi only: values of the partner's topic fields before its first sample arrived,
   // {field: value} (the node's initial outputs use them; default: the inputs' defaults).
   std::optional<ConfigNode> initial;
+  // The topic fields this connection carries (`fields: [angle, speed]`); empty: every field
+  // the two node types map. Two participants of one type on a line shaft read different
+  // fields of each other (docs/line-shaft.md).
+  std::vector<std::string> fields;
   std::string key_path;  // "connections[1]"
 };
 

@@ -17,6 +17,7 @@
 #include "mechsim/models/block.h"
 #include "mechsim/models/cam/motion_law.h"
 #include "mechsim/models/cam/shaft_drive.h"
+#include "mechsim/models/cam/shaft_segment.h"
 
 namespace mechsim::models::cam {
 
@@ -35,6 +36,9 @@ struct CamShaftParams {
   // driving shaft's speed and acceleration and hands back its load torque and its inertia
   // (shaft, flywheel and the follower's reflected inertia) reflected through the gear.
   double gear_ratio = 0.0;
+  // Set: the shaft is a station of a line shaft, driven by the upstream shaft through this
+  // elastic segment (docs/line-shaft.md). States θ, ω on the shaft's own inertia (> 0).
+  std::optional<ShaftSegment> segment{};
 };
 
 // Inputs: load_torque (N m, default 0: the torque the follower demands except its
@@ -52,6 +56,21 @@ struct CamShaftParams {
 // so no algebraic loop closes across the gear. shaft_torque is then the torque the gear
 // delivers, M_rest + (I + J_r) ω̇. Every mode also outputs kinetic_energy = ½ I ω² (the
 // shaft and flywheel; 0 for a speed source, which has no inertia).
+//
+// A shaft driven through a gear or a segment has the input downstream_torque (N m, default
+// 0, the last input): the torque the next elastic segment of a line shaft takes from this
+// shaft (that segment's drive_load_torque). It adds to the load torque: a gear hands it back
+// to the driving shaft, a segment-driven shaft's ω̇ pays for it.
+//
+// Driven through an elastic segment (segment set, docs/line-shaft.md): states θ, ω and the
+// segment's twist q (0 at t = 0) with
+//     (I + J_r) ω̇ = T_seg − M_rest − T_down,   q̇ = ω_u − ω,   T_seg = k q + c q̇
+// from the input drive_speed ω_u (the upstream shaft's, required). The twist is integrated
+// from the speeds rather than taken from the upstream angle: a co-simulation holds a partner's
+// first sample over the first step, and a held angle would twist a line turning at speed by
+// ω H at once (2 kN m on the shipped line); a held speed makes no such jump.
+// shaft_torque = drive_load_torque = T_seg (the torque the segment delivers here and takes
+// from upstream); extra outputs segment_energy = ½ k q² and segment_damping_power = c q̇².
 class CamShaftBlock : public Block {
  public:
   explicit CamShaftBlock(CamShaftParams params);
@@ -70,11 +89,18 @@ class CamShaftBlock : public Block {
   // The joints of the lift law (every piece's start, dwells included).
   std::vector<double> angle_law_changes() const override;
   bool is_driven() const { return params_.gear_ratio > 0.0; }
+  bool is_segment_driven() const { return params_.segment.has_value(); }
   // ω̇ of a torque drive at speed ω under the given load (0 for a speed source).
-  double angular_acceleration(double speed, double load_torque_rest, double reflected_inertia) const;
+  double angular_acceleration(double speed, double load_torque_rest, double reflected_inertia,
+                              double downstream_torque = 0.0) const;
 
  private:
+  // ω̇ of a segment-driven shaft under the segment's torque and the inputs' loads.
+  double segment_acceleration(double segment_torque, std::span<const double> u) const;
+
   CamShaftParams params_;
+  // Input indices of the driven modes (-1: not declared).
+  int in_drive_speed_ = -1, in_drive_acceleration_ = -1, in_downstream_torque_ = -1;
 };
 
 }  // namespace mechsim::models::cam
