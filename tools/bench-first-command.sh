@@ -53,7 +53,8 @@ chroot "$root" /bin/bash -c '
   end=$(ms)
   grep -q "run folder:" /root/run.log || rc=${rc/#0/1}
   # CPU of the children (install-deps and the command): the second line of `times`.
-  read -r cu cs < <(times | sed -n 2p)
+  times > /root/times.txt   # in this shell: a subshell would not count the children
+  read -r cu cs < <(sed -n 2p /root/times.txt)
   echo "first command rc=$rc: $(( (end - start) / 1000 )) s to the first summary" \
        "(apt-get $(( (deps - start) / 1000 )) s, build and run $(( (end - deps) / 1000 )) s);" \
        "CPU of both: user $(seconds "$cu") s, sys $(seconds "$cs") s"
