@@ -3,7 +3,7 @@
 # the first summary): a debootstrap minbase chroot of bookworm, a clean clone of REPO at REF
 # inside it, then `tools/setup-and-run.sh --no-plot` as a newcomer runs it (packages, build,
 # the cam press run). Prints the wall time of the whole command, of its apt-get part and of
-# the build and run, and the CPU seconds (user+sys) of the build and run.
+# the build and run, and the CPU seconds (user, sys) of it all.
 #   sudo tools/bench-first-command.sh [REPO] [REF]     defaults: this checkout, HEAD
 # Needs root, debootstrap and network access to deb.debian.org. The minbase system is cached
 # as a tarball (MECHSIM_MINBASE_TAR, default /var/tmp/mechsim-bookworm-minbase.tar) so a
