@@ -20,7 +20,13 @@ case "${1:-}" in
   *) echo "usage: tools/build.sh [--run-only]" >&2; exit 2 ;;
 esac
 # ccache, when installed, makes rebuilds after a pull cheap; the build does not need it.
-launcher=()
-if command -v ccache >/dev/null; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
-cmake -S . -B build -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DMECHSIM_BUILD_TESTS=$tests" "${launcher[@]}" >/dev/null
+options=()
+if command -v ccache >/dev/null; then options+=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
+# Ninja (Debian package ninja-build) for a new tree: it starts a library's users' sources while
+# the library's last ones still compile, where make waits for the library, so neither core
+# idles behind a long unit. An existing tree keeps its generator (cmake cannot change it).
+if [ ! -f build/CMakeCache.txt ] && command -v ninja >/dev/null; then options+=(-G Ninja); fi
+# Unity batches: a build from scratch parses the heavy headers once per batch, not per file
+# (CMakeLists.txt, MECHSIM_UNITY_BUILD; the test suites stay file by file).
+cmake -S . -B build -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DMECHSIM_BUILD_TESTS=$tests" -DMECHSIM_UNITY_BUILD=ON "${options[@]}" >/dev/null
 cmake --build build -j"$(nproc)" "${targets[@]}"

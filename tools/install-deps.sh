@@ -7,7 +7,7 @@
 set -euo pipefail
 
 packages=(
-  cmake g++ make pkg-config git           # build
+  cmake g++ make ninja-build pkg-config git   # build (tools/build.sh uses Ninja when present)
   cyclonedds-dev cyclonedds-tools         # DDS (C API, idlc, ddsperf)
   libfastrtps-dev fastddsgen              # Fast DDS 2.9 (C++ API) and its IDL generator
   default-jre-headless fastdds-tools      # fastddsgen runs on Java; `fastdds shm clean`
