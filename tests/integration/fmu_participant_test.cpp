@@ -1,0 +1,128 @@
+// Participants of type fmu over DDS (docs/fmi.md, "FMU participants"): real node processes
+// started by `mechsim launch`, on Cyclone DDS, on Fast DDS and mixed. The scene is the
+// shipped config/scenes/fmu_speed_lag.yaml with the test FMUs of this build: the cam
+// shaft's constant speed w drives the lag T dy/dt = k u - y as a co-simulation FMU and as a
+// model-exchange FMU, each checked against the closed form y(t) = k w (1 - exp(-t / T)).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <numbers>
+#include <string>
+
+#include "mechsim/cosim/output_log.h"
+#include "run_fixture.h"
+
+namespace mechsim::testing {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+const std::string kFmuDir = MECHSIM_TEST_FMU_DIR;
+constexpr double kSpeed = std::numbers::pi;  // 30 rpm in rad/s
+constexpr double kGain = 2.0, kTimeConstant = 0.05;
+
+class FmuParticipants : public RunFolderTest {
+ protected:
+  // The shipped scene with its FMU paths pointing at this build's test FMUs, and `extra`
+  // appended (more participants and connections).
+  std::string scene(const std::string& extra = "") const {
+    std::string text = slurp(scene_path("fmu_speed_lag.yaml"));
+    for (std::string::size_type at; (at = text.find("../../build/tests/fmus")) != std::string::npos;)
+      text.replace(at, std::string("../../build/tests/fmus").size(), kFmuDir);
+    const std::string path = (dir_ / "fmu_speed_lag.yaml").string();
+    std::ofstream(path) << text << extra;
+    return path;
+  }
+  // y of `node` at every step against the closed form, to `tolerance` (rad/s).
+  void expect_closed_form(const std::string& tag, const std::string& node, double tolerance) const {
+    const cosim::OutputLog out = cosim::read_output_log((run_folder(tag) / (node + ".outputs.bin")).string());
+    const int t = out.column("t"), y = out.column("y");
+    ASSERT_GE(y, 0) << node << ": no column y";
+    ASSERT_EQ(out.rows(), 301u) << node << ": steps 0 .. 300 of 1 ms";
+    double worst = 0.0;
+    for (std::size_t r = 0; r < out.rows(); ++r) {
+      const double tr = out.data[t][r];
+      const double expected = kGain * kSpeed * (1.0 - std::exp(-tr / kTimeConstant));
+      worst = std::max(worst, std::abs(out.data[y][r] - expected));
+    }
+    EXPECT_LT(worst, tolerance) << node << " on " << tag;
+  }
+  void run_and_check(const std::string& tag, std::vector<std::string> extra) {
+    CommandResult r = run(launch_args(scene(), tag, std::move(extra)), log(tag), 180);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    // Co-simulation: RK4 substeps of 0.1 ms on T = 50 ms (tests/fmus/common/solver.c) are
+    // exact to ~(h/T)^4 = 2e-11 of the response; 1e-8 rad/s is rounding headroom, and a
+    // step's shift in time would show as 2 w k (1 ms / T) e^{-t/T}, up to 0.25 rad/s.
+    expect_closed_form(tag, "lag", 1e-8);
+    // Model exchange: CVODE at rtol 1e-9, atol 1e-12 (the scene's solver): a global error
+    // of a few 1e-9 of 2 k w = 6.3 rad/s; 1e-6 rad/s allows 100x that.
+    expect_closed_form(tag, "filter", 1e-6);
+    const json s = summary(tag);
+    EXPECT_EQ(s["status"], "ok") << s.dump(2);
+  }
+};
+
+TEST_F(FmuParticipants, CoSimulationAndModelExchangeFmusOnCyclone) {
+  run_and_check("cyclone", {"--set", "dds.vendor=cyclone"});
+}
+
+TEST_F(FmuParticipants, CoSimulationAndModelExchangeFmusOnFastDds) {
+  run_and_check("fastdds", {"--set", "dds.vendor=fastdds"});
+}
+
+TEST_F(FmuParticipants, MixedVendors) {
+  // The cam on Cyclone, the co-simulation FMU on Fast DDS, the model-exchange one on Cyclone:
+  // FmuOutputs crosses vendors both ways (lag -> filter below).
+  run_and_check("mixed", {"--set", "dds.vendor=cyclone", "--set", "participants.lag.dds=fastdds"});
+}
+
+// An FMU that fails in a running node (tests/fmus/faulty, `fault` from fault_time = 50 ms
+// on) ends the run cleanly with a message naming the FMU file, the participant, the
+// function and the step; one that aborts its process is a node crash.
+class FailingFmu : public RunFolderTest {
+ protected:
+  CommandResult run_faulty(const std::string& tag, const std::string& file, int fault) {
+    const std::string path = (dir_ / (tag + ".yaml")).string();
+    std::ofstream(path) << "scene: fmu_fault\n"
+                        << "time: {start: 0 s, end: 0.1 s, step: 1 ms}\n"
+                        << "participants:\n"
+                        << "  cam: {type: cam_shaft, params: {speed: 30 rpm, pitch_radius: 65 mm, eccentricity: 0 mm,\n"
+                        << "        law: [{type: full_cycloid, start: 0 deg, span: 180 deg, lift: 20 mm},\n"
+                        << "              {type: full_cycloid, start: 180 deg, span: 180 deg, lift: -20 mm}]}}\n"
+                        << "  bad: {type: fmu, fmu: " << kFmuDir << "/" << file
+                        << ", parameters: {fault: " << fault << ", fault_time: 50 ms}}\n";
+    return run(launch_args(path, tag), log(tag), 120);
+  }
+};
+
+TEST_F(FailingFmu, AFailedStepEndsTheRunNamingFileParticipantFunctionAndStep) {
+  CommandResult r = run_faulty("step", "faulty_fmi2_cs.fmu", 1);
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  for (const std::string& part : {std::string("faulty_fmi2_cs.fmu"), std::string("participant 'bad'"),
+                                  std::string("fmi2DoStep returned fmi2Error"), std::string("step 50 -> 51")})
+    EXPECT_NE(r.output.find(part), std::string::npos) << part << " missing in:\n" << r.output;
+  EXPECT_EQ(summary("step")["status"], "failed");
+}
+
+TEST_F(FailingFmu, ANanOutputEndsTheRunNamingTheOutput) {
+  CommandResult r = run_faulty("nan", "faulty_fmi3_cs.fmu", 2);
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  for (const std::string& part : {std::string("faulty_fmi3_cs.fmu"), std::string("participant 'bad'"),
+                                  std::string("output 'y' is NaN"), std::string("step 5")})
+    EXPECT_NE(r.output.find(part), std::string::npos) << part << " missing in:\n" << r.output;
+}
+
+TEST_F(FailingFmu, AnFmuThatAbortsItsProcessIsANodeCrash) {
+  CommandResult r = run_faulty("abort", "faulty_fmi2_cs.fmu", 3);
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_FALSE(r.timed_out);
+  EXPECT_NE(r.output.find("bad"), std::string::npos) << r.output;
+  EXPECT_EQ(summary("abort")["status"], "failed");
+}
+
+}  // namespace
+}  // namespace mechsim::testing
