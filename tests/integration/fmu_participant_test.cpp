@@ -5,6 +5,7 @@
 // model-exchange FMU, each checked against the closed form y(t) = k w (1 - exp(-t / T)).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +13,7 @@
 #include <numbers>
 #include <string>
 
+#include "domain_lock.h"
 #include "mechsim/cosim/output_log.h"
 #include "run_fixture.h"
 
@@ -78,6 +80,41 @@ TEST_F(FmuParticipants, MixedVendors) {
   // The cam on Cyclone, the co-simulation FMU on Fast DDS, the model-exchange one on Cyclone:
   // FmuOutputs crosses vendors both ways (lag -> filter below).
   run_and_check("mixed", {"--set", "dds.vendor=cyclone", "--set", "participants.lag.dds=fastdds"});
+}
+
+// The variable names away from the nodes: `topic echo` on the running scene (with
+// --scene: the FMU's names; without: reals[i]), and the launcher's recording, whose
+// FmuOutputs channels carry them as "mechsim.fields" metadata (bag info, bag export).
+TEST_F(FmuParticipants, EchoAndTheRecordingNameTheVariables) {
+  const launch::DomainLock domain = launch::DomainLock::acquire();
+  const std::string path = scene();
+  // Paced at real time for 3 s, so that the echoes find the writers while they run.
+  const pid_t launcher = spawn(launch_args(path, "rec", {"--set", "dds.domain=" + std::to_string(domain.domain_id()), "--set",
+                                                         "record=true", "--set", "mode=realtime", "--set", "time.end=3 s"}),
+                               log("rec"));
+  CommandResult named = run({kMechsim, "topic", "echo", "lag/outputs", "--domain", std::to_string(domain.domain_id()),
+                             "--count", "2", "--timeout", "60", "--scene", path},
+                            log("echo-named"), 90);
+  EXPECT_EQ(named.exit_code, 0) << named.output;
+  EXPECT_NE(named.output.find("--- # lag/outputs (mechsim::msg::FmuOutputs)"), std::string::npos) << named.output;
+  EXPECT_NE(named.output.find("\ny: "), std::string::npos) << named.output;
+  CommandResult unnamed = run({kMechsim, "topic", "echo", "filter/outputs", "--domain", std::to_string(domain.domain_id()),
+                               "--count", "1", "--timeout", "60"},
+                              log("echo-unnamed"), 90);
+  EXPECT_EQ(unnamed.exit_code, 0) << unnamed.output;
+  EXPECT_NE(unnamed.output.find("\nreals[0]: "), std::string::npos) << unnamed.output;
+  CommandResult launched = wait_for(launcher, log("rec"), 120);
+  ASSERT_EQ(launched.exit_code, 0) << launched.output;
+
+  const std::string mcap = (run_folder("rec") / "recording.mcap").string();
+  CommandResult info = run({kMechsim, "bag", "info", mcap}, log("info"), 60);
+  EXPECT_EQ(info.exit_code, 0) << info.output;
+  EXPECT_NE(info.output.find("fields: y:f64"), std::string::npos) << info.output;
+  CommandResult exported = run({kMechsim, "bag", "export", mcap, "--csv", (dir_ / "csv").string()}, log("export"), 60);
+  EXPECT_EQ(exported.exit_code, 0) << exported.output;
+  const std::string csv = slurp((dir_ / "csv" / "lag_outputs.csv").string());
+  EXPECT_EQ(csv.substr(0, csv.find('\n')), "t,step,run_id,y") << csv.substr(0, 200);
+  EXPECT_GT(std::count(csv.begin(), csv.end(), '\n'), 3000) << "every step of 3 s at 1 ms";
 }
 
 // An FMU that fails in a running node (tests/fmus/faulty, `fault` from fault_time = 50 ms

@@ -400,6 +400,22 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
     if (auto s = p.optional_child("solver")) spec.solver = parse_solver(*s);
     if (scene.time.adaptive) adaptive_solver_tolerances(spec.solver, scene.time.adaptive->tolerance);
     spec.params = p.has("params") ? p.child("params") : ConfigNode::from_string("{}", root.file());
+    // An FMU file is relative to the scene file when written in it, to the working folder
+    // when given with --set; written back absolute, so that the run folder's copy of the
+    // scene (what the nodes read) names the same file.
+    const auto absolute_fmu_file = [&](const std::string& key) {
+      const std::string dotted = "participants." + name + "." + key;
+      const std::filesystem::path f(root.child("participants").child(name).child("fmu").is_map()
+                                        ? root.child("participants").child(name).child("fmu").string("file")
+                                        : root.child("participants").child(name).string("fmu"));
+      const bool from_file = std::none_of(overrides.begin(), overrides.end(),
+                                          [&](const std::string& o) { return o.rfind(dotted + "=", 0) == 0; });
+      scene.root.set_override(dotted, std::filesystem::absolute(f.is_absolute() || !from_file ? f : std::filesystem::path(path).parent_path() / f)
+                                    .lexically_normal()
+                                    .string());
+      p = root.child("participants").child(name);
+    };
+    if (p.has("fmu")) absolute_fmu_file(p.child("fmu").is_map() ? "fmu.file" : "fmu");
     if (spec.type == "fmu") {
       // A participant that is an FMU with ports of its own: `fmu: FILE` and its settings
       // beside it, or the map `fmu: {file, interface, step, parameters}` of an FMU in place.

@@ -184,7 +184,7 @@ BuiltFmuParticipant make_fmu_participant(const config::Scene& scene, const confi
   } catch (const std::invalid_argument& e) {
     refuse(scene, spec.key_path, std::string("expected an FMU whose outputs fit on its topic: ") + e.what());
   }
-  participant->node_type = NodeType{"fmu",
+  participant->node_type = NodeType{kFmuNodeType,
                                     "an FMU with ports of its own; publishes FmuOutputs",
                                     &participant->topic_type,
                                     "outputs",

@@ -28,6 +28,10 @@ std::unique_ptr<models::Block> make_fmu_block(const config::Scene& scene, const 
                                               const NodeType& type, const models::Block& native,
                                               const config::ConfigNode* coupling);
 
+// `type: fmu`: an FMU with ports of its own; its node type is made for each participant from
+// its FMU, so it is not in the catalog's node_types(). Its node executable is `fmu`.
+inline constexpr const char* kFmuNodeType = "fmu";
+
 // A participant of `type: fmu` (docs/fmi.md, "FMU participants"): the FMU's block, whose
 // ports are its exchanged input and output variables by name, and a node type made for it
 // alone, publishing <name>/outputs as FmuOutputs (idl/fmu.idl) with the FMU's outputs as

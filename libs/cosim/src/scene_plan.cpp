@@ -275,7 +275,7 @@ ScenePlan ScenePlan::build_time_run(const config::Scene& scene) {
     PlannedNode node;
     node.spec = &spec;
     node.type = find_node_type(spec.type);
-    if (!node.type && spec.type != "fmu") {
+    if (!node.type && spec.type != kFmuNodeType) {
       std::string known;
       for (const auto& t : node_types()) known += (known.empty() ? "" : ", ") + t.name;
       refuse(scene, spec.key_path + ".type", "expected a node type (" + known + ", fmu), got '" + spec.type + "'");
@@ -294,7 +294,7 @@ ScenePlan ScenePlan::build_time_run(const config::Scene& scene) {
       refuse(scene, spec.key_path + ".params", std::string("parameters a ") + spec.type + " accepts (" + e.what() + ")");
     };
     try {
-      if (spec.type == "fmu") {
+      if (spec.type == kFmuNodeType) {
         BuiltFmuParticipant built = make_fmu_participant(scene, spec, coupling);
         node.fmu = std::move(built.participant);
         node.type = &node.fmu->node_type;
