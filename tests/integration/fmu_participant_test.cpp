@@ -136,6 +136,21 @@ TEST_F(FmuParticipants, EchoAndTheRecordingNameTheVariables) {
   EXPECT_GT(std::count(csv.begin(), csv.end(), '\n'), 3000) << "every step of 3 s at 1 ms";
 }
 
+// `--replay lag=FILE` stands in for the FMU participant as for any other: the recording's
+// FmuOutputs samples, decoded with the FMU's names from the plan, replayed; the filter that
+// reads lag.y then writes the bytes it wrote in the recorded run.
+TEST_F(FmuParticipants, AReplayStandsInForTheFmu) {
+  const std::vector<std::string> rewired{"--set", "connections[1].from=lag.y", "--set", "record=true"};
+  CommandResult recorded = run(launch_args(scene(), "recorded", rewired), log("recorded"), 180);
+  ASSERT_EQ(recorded.exit_code, 0) << recorded.output;
+  std::vector<std::string> replay = rewired;
+  replay.insert(replay.end(), {"--replay", "lag=" + (run_folder("recorded") / "recording.mcap").string()});
+  CommandResult replayed = run(launch_args(scene(), "replayed", replay), log("replayed"), 180);
+  ASSERT_EQ(replayed.exit_code, 0) << replayed.output;
+  expect_identical_node_outputs(run_folder("recorded"), run_folder("replayed"), std::vector<std::string>{"lag", "filter"},
+                                "recorded and replayed");
+}
+
 // An FMU that fails in a running node (tests/fmus/faulty, `fault` from fault_time = 50 ms
 // on) ends the run cleanly with a message naming the FMU file, the participant, the
 // function and the step; one that aborts its process is a node crash.
