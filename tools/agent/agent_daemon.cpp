@@ -150,7 +150,9 @@ void Agent::start_node(const transport::AgentMessage& m) {
   if (request.is_discarded() || !request.is_object()) return refuse("the start request is not a JSON object");
   const std::string type = request.value("type", "");
   // Only the node executables of the catalog, from this build: never a path the request names.
-  if (cosim::find_node_type(type) == nullptr) return refuse("'" + type + "' is not a mechsim node type");
+  // "fmu": the node of a participant of type fmu, whose node type each plan makes (docs/fmi.md).
+  if (cosim::find_node_type(type) == nullptr && type != "fmu")
+    return refuse("'" + type + "' is not a mechsim node type");
   const std::string folder_name = request.value("run_folder", "");
   if (folder_name.empty() || folder_name.find('/') != std::string::npos || folder_name[0] == '.')
     return refuse("run_folder must be a plain folder name, got '" + folder_name + "'");

@@ -21,8 +21,9 @@ ReplayRequest parse_replay_request(const std::string& text) {
 void write_replay_table(const std::string& recording, const cosim::PlannedNode& node, const cosim::StepGrid& grid,
                         const std::string& table_path) {
   const transport::TopicType& type = *node.type->publishes;
-  const recorder::MessageLayout* layout = recorder::find_layout(type.idl_name);
-  if (!layout) throw std::logic_error("no CDR layout for " + type.idl_name);
+  // The node's own topic type: an FMU participant's FmuOutputs with its outputs' names.
+  const recorder::MessageLayout own_layout = recorder::layout_of(type);
+  const recorder::MessageLayout* layout = &own_layout;
   record::McapReader reader(recording);  // throws naming the file
   std::set<std::uint16_t> channels;
   for (const auto& [id, channel] : reader.channels())

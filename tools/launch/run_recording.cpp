@@ -6,6 +6,7 @@
 #include "mechsim/cosim/step_topic.h"
 #include "mechsim/transport/backends.h"
 #include "mechsim/transport/topic_types.h"
+#include "cdr_decoder.h"
 #include "recorder.h"
 
 namespace mechsim::launch {
@@ -28,6 +29,8 @@ std::unique_ptr<RunRecording> RunRecording::start(const cosim::ScenePlan& plan, 
   for (const auto& node : plan.nodes())
     if (options.topics.selects(node.topic)) {
       options.topic_types[node.topic] = node.type->publishes->idl_name;
+      if (node.type->publishes->layout == transport::TopicLayout::sequences)
+        options.topic_fields[node.topic] = recorder::fields_text(recorder::layout_of(*node.type->publishes));
       r->data_topics_.push_back(node.topic);
     }
   // An adaptive step's proposals (<node>/step): each node's error estimate at every step.

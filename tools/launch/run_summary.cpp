@@ -183,6 +183,8 @@ int print_run_report(json& summary, const config::Scene& scene, std::uint64_t ru
     std::printf("run %s of '%s': %llu %s in %.3f s wall: %.0f steps/s, real-time factor %.2f\n",
                 hex_id(run_id).c_str(), scene.name.c_str(), static_cast<unsigned long long>(summary["steps"].get<std::uint64_t>()),
                 of_length, out.wall_time_s, summary["steps_per_second"].get<double>(), summary["real_time_factor"].get<double>());
+    if (summary.contains("reference") && summary["reference"].contains("compared_with") && !summary["signals"].empty())
+      std::printf("  compared with %s\n", summary["reference"]["compared_with"].get<std::string>().c_str());
     for (auto& [name, e] : summary["signals"].items()) {
       const std::string unit = e["unit"].get<std::string>();
       char at[48] = "";

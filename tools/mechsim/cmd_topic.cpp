@@ -8,11 +8,14 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <optional>
 #include <thread>
 
 #include "elapsed.h"
 #include "cdr_decoder.h"
 #include "commands.h"
+#include "mechsim/config/scene.h"
+#include "mechsim/cosim/scene_plan.h"
 #include "mechsim/transport/raw.h"
 #include "install_paths.h"
 
@@ -65,6 +68,7 @@ struct EndpointArgs {
   int domain = -1;
   std::string type;
   double timeout_s = 0.0;
+  std::string scene;  // echo: the run's scene, for an FMU participant's variable names
 };
 
 void add_endpoint_options(CLI::App* cmd, EndpointArgs& a) {
@@ -128,12 +132,34 @@ void print_sample(const std::string& topic, const recorder::MessageLayout& layou
   std::fflush(stdout);
 }
 
+// An FMU participant's topic (FmuOutputs) has no names on the wire: with --scene they are
+// its FMU's output variables, from the scene's plan; without, reals[i], integers[i], ...
+std::optional<recorder::MessageLayout> fmu_names(const EndpointArgs& a) {
+  if (a.scene.empty()) return std::nullopt;
+  const config::Scene scene = config::load_scene(a.scene);
+  const cosim::ScenePlan plan = cosim::ScenePlan::build(scene);
+  for (const auto& node : plan.nodes())
+    if (node.topic == a.topic) return recorder::layout_of(*node.type->publishes);
+  throw std::invalid_argument(a.scene + ": no participant publishes '" + a.topic + "'");
+}
+
 int echo(const EndpointArgs& a, long count) {
   if (!valid_domain(a.domain, "echo")) return 2;
+  std::optional<recorder::MessageLayout> named;
+  try {
+    named = fmu_names(a);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "mechsim topic echo: %s\n", e.what());
+    return 2;
+  }
   auto p = join(a.domain);
   const recorder::MessageLayout* layout = nullptr;
   auto reader = subscribe(*p, a, "echo", layout);
   if (!reader) return g_signal ? 0 : 1;
+  std::optional<recorder::MessageLayout> unnamed;
+  if (layout->sequences) {
+    if (named && named->type_name == layout->type_name) layout = &*named;
+  }
   transport::RawSample sample;
   long shown = 0;
   while (!g_signal && (count <= 0 || shown < count)) {
@@ -142,6 +168,12 @@ int echo(const EndpointArgs& a, long count) {
       continue;
     }
     try {
+      if (layout->sequences && layout->fields.empty()) {  // no names: as many as the sample carries
+        unnamed = recorder::unnamed_fmu_layout(sample.cdr);
+        print_sample(a.topic, *unnamed, recorder::decode_sample(sample.cdr, *unnamed));
+        ++shown;
+        continue;
+      }
       print_sample(a.topic, *layout, recorder::decode_sample(sample.cdr, *layout));
     } catch (const recorder::CdrError& e) {
       std::printf("--- # %s: undecodable sample of %zu bytes: %s\n", a.topic.c_str(), sample.cdr.size(), e.what());
@@ -212,6 +244,9 @@ void add_topic_command(CLI::App& app, int& exit_code) {
   auto echo_count = std::make_shared<long>(0);
   add_endpoint_options(echo_cmd, *echo_args);
   echo_cmd->add_option("--count", *echo_count, "stop after this many samples (default: until Ctrl-C)");
+  echo_cmd->add_option("--scene", echo_args->scene,
+                       "the run's scene: an FMU participant's topic (FmuOutputs) is printed with its FMU's variable names "
+                       "(without: reals[i], integers[i], booleans[i])");
   echo_cmd->callback([echo_args, echo_count, &exit_code] { exit_code = echo(*echo_args, *echo_count); });
 
   auto* hz_cmd = topic->add_subcommand("hz", "Rate of a topic per window, with the sample count behind it");

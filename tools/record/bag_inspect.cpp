@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -272,6 +273,9 @@ std::string format_bag_info(const BagInfo& info) {
     if (t.run_ids.size() > 1) o << "  " << t.run_ids.size() << " runs";
     if (t.undecodable) o << "  " << t.undecodable << " undecodable";
     o << "\n";
+    // An FMU participant's topic: its variable names, as the recorder wrote them.
+    if (auto it = t.metadata.find(kFieldsMetadataKey); it != t.metadata.end())
+      o << "  " << std::string(static_cast<std::size_t>(width), ' ') << "  fields: " << it->second << "\n";
   }
   for (const auto& p : info.problems) o << "problem:      " << p << "\n";
   return o.str();
@@ -290,8 +294,14 @@ BagExport export_csv(const std::string& bag, const std::string& dir, const BagRe
   fs::create_directories(dir);
   struct Output {
     ExportedTopic topic;
-    const MessageLayout* layout = nullptr;
+    std::optional<MessageLayout> layout;
+    bool unnamed = false;  // FmuOutputs without its names in the channel: named from the first sample
     std::unique_ptr<std::ofstream> file;
+  };
+  const auto write_header = [](Output& out) {
+    *out.file << "t,step,run_id";
+    for (const auto& f : out.layout->fields) *out.file << "," << csv_quoted(f.name);
+    *out.file << "\n";
   };
   std::map<std::uint16_t, Output> outputs;
   std::set<std::string> used_names;
@@ -299,7 +309,14 @@ BagExport export_csv(const std::string& bag, const std::string& dir, const BagRe
     Output out;
     out.topic.topic = ch.topic;
     auto schema = reader.schemas().find(ch.schema_id);
-    if (schema != reader.schemas().end() && ch.message_encoding == "cdr") out.layout = find_layout(schema->second.name);
+    if (schema != reader.schemas().end() && ch.message_encoding == "cdr") {
+      try {
+        out.layout = channel_layout(schema->second.name, ch.metadata);
+      } catch (const CdrError&) {
+        out.layout.reset();  // metadata that is not a field list: the topic is skipped, as undecodable
+      }
+    }
+    out.unnamed = out.layout && out.layout->sequences && out.layout->fields.empty();
     if (out.layout) {
       std::string name = csv_file_name(ch.topic);
       // Two topics that differ only in replaced characters must not share a file.
@@ -308,9 +325,7 @@ BagExport export_csv(const std::string& bag, const std::string& dir, const BagRe
       out.topic.file = (fs::path(dir) / name).string();
       out.file = std::make_unique<std::ofstream>(out.topic.file);
       if (!*out.file) throw std::runtime_error("cannot write " + out.topic.file);
-      *out.file << "t,step,run_id";
-      for (const auto& f : out.layout->fields) *out.file << "," << csv_quoted(f.name);
-      *out.file << "\n";
+      if (!out.unnamed) write_header(out);
     }
     outputs.emplace(id, std::move(out));
   }
@@ -325,6 +340,11 @@ BagExport export_csv(const std::string& bag, const std::string& dir, const BagRe
     }
     DecodedSample s;
     try {
+      if (out.unnamed) {
+        out.layout = unnamed_fmu_layout(m.data);
+        out.unnamed = false;
+        write_header(out);
+      }
       s = decode_sample(m.data, *out.layout);
     } catch (const CdrError&) {
       ++out.topic.skipped;

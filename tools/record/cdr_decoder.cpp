@@ -24,12 +24,8 @@ namespace {
 
 std::vector<MessageLayout> make_layouts() {
   std::vector<MessageLayout> layouts;
-  for (const transport::TopicType* t : transport::all_topic_types()) {
-    MessageLayout l{t->idl_name, t->idl_file, {}};
-    for (const auto& f : t->fields)
-      l.fields.push_back({f.name, f.kind == transport::FieldKind::boolean ? CdrKind::boolean : CdrKind::f64});
-    layouts.push_back(std::move(l));
-  }
+  for (const transport::TopicType* t : transport::all_topic_types()) layouts.push_back(layout_of(*t));
+  layouts.push_back({transport::kFmuOutputsTypeName, "fmu.idl", {}, true});
   for (const char* name : {"Control", "Status"}) {
     const std::string file = std::string(name) == "Control" ? "control.idl" : "status.idl";
     layouts.push_back({"mechsim::msg::" + std::string(name), file, struct_members(idl_files().at(file), name)});
@@ -110,7 +106,82 @@ transport::SampleHeader read_header(CdrCursor& c) {
   return h;
 }
 
+// FmuOutputs' three sequences as they come.
+struct FmuSequences {
+  std::vector<double> reals;
+  std::vector<std::int32_t> integers;
+  std::vector<bool> booleans;
+};
+
+FmuSequences read_sequences(CdrCursor& c) {
+  FmuSequences s;
+  const auto count = [&](const char* what) {
+    const auto n = c.scalar<std::uint32_t>();
+    if (n > transport::kFmuOutputsBound)
+      throw CdrError(std::string("FmuOutputs.") + what + " holds " + std::to_string(n) + " values, the IDL allows " +
+                     std::to_string(transport::kFmuOutputsBound));
+    return n;
+  };
+  for (std::uint32_t i = 0, n = count("reals"); i < n; ++i) s.reals.push_back(c.scalar<double>());
+  for (std::uint32_t i = 0, n = count("integers"); i < n; ++i) s.integers.push_back(c.scalar<std::int32_t>());
+  for (std::uint32_t i = 0, n = count("booleans"); i < n; ++i) s.booleans.push_back(c.boolean());
+  return s;
+}
+
+const char* kind_word(CdrKind k) { return k == CdrKind::i32 ? "i32" : k == CdrKind::boolean ? "boolean" : "f64"; }
+
 }  // namespace
+
+MessageLayout layout_of(const transport::TopicType& type) {
+  MessageLayout l{type.idl_name, type.idl_file, {}, type.layout == transport::TopicLayout::sequences};
+  for (const auto& f : type.fields)
+    l.fields.push_back({f.name, f.kind == transport::FieldKind::boolean ? CdrKind::boolean
+                                : f.kind == transport::FieldKind::i32   ? CdrKind::i32
+                                                                        : CdrKind::f64});
+  return l;
+}
+
+std::string fields_text(const MessageLayout& layout) {
+  std::string text;
+  for (const auto& f : layout.fields) text += (text.empty() ? "" : ",") + f.name + ":" + kind_word(f.kind);
+  return text;
+}
+
+MessageLayout fmu_layout_from_text(std::string_view text) {
+  MessageLayout l{transport::kFmuOutputsTypeName, "fmu.idl", {}, true};
+  while (!text.empty()) {
+    const auto comma = text.find(',');
+    const std::string_view item = text.substr(0, comma);
+    const auto colon = item.rfind(':');
+    if (colon == std::string_view::npos || colon == 0)
+      throw CdrError("field list '" + std::string(text) + "': expected name:kind items separated by commas");
+    const std::string_view kind = item.substr(colon + 1);
+    const CdrKind k = kind == "f64" ? CdrKind::f64 : kind == "i32" ? CdrKind::i32 : kind == "boolean" ? CdrKind::boolean : CdrKind::string;
+    if (k == CdrKind::string) throw CdrError("field list: kind '" + std::string(kind) + "', expected f64, i32 or boolean");
+    l.fields.push_back({std::string(item.substr(0, colon)), k});
+    text = comma == std::string_view::npos ? std::string_view{} : text.substr(comma + 1);
+  }
+  return l;
+}
+
+std::optional<MessageLayout> channel_layout(std::string_view type_name, const std::map<std::string, std::string>& metadata) {
+  const MessageLayout* known = find_layout(type_name);
+  if (!known) return std::nullopt;
+  if (known->sequences)
+    if (auto it = metadata.find(kFieldsMetadataKey); it != metadata.end()) return fmu_layout_from_text(it->second);
+  return *known;
+}
+
+MessageLayout unnamed_fmu_layout(std::span<const std::byte> cdr) {
+  CdrCursor c(cdr);
+  read_header(c);
+  const FmuSequences s = read_sequences(c);
+  MessageLayout l{transport::kFmuOutputsTypeName, "fmu.idl", {}, true};
+  for (std::size_t i = 0; i < s.reals.size(); ++i) l.fields.push_back({"reals[" + std::to_string(i) + "]", CdrKind::f64});
+  for (std::size_t i = 0; i < s.integers.size(); ++i) l.fields.push_back({"integers[" + std::to_string(i) + "]", CdrKind::i32});
+  for (std::size_t i = 0; i < s.booleans.size(); ++i) l.fields.push_back({"booleans[" + std::to_string(i) + "]", CdrKind::boolean});
+  return l;
+}
 
 const std::vector<MessageLayout>& all_layouts() {
   static const std::vector<MessageLayout> layouts = make_layouts();
@@ -135,6 +206,20 @@ DecodedSample decode_sample(std::span<const std::byte> cdr, const MessageLayout&
   DecodedSample s;
   s.header = read_header(c);
   s.values.reserve(layout.fields.size());
+  if (layout.sequences) {
+    const FmuSequences q = read_sequences(c);
+    std::size_t reals = 0, integers = 0, booleans = 0;
+    for (const auto& f : layout.fields) {
+      if (f.kind == CdrKind::f64 && reals < q.reals.size()) s.values.emplace_back(q.reals[reals++]);
+      else if (f.kind == CdrKind::i32 && integers < q.integers.size()) s.values.emplace_back(static_cast<std::int64_t>(q.integers[integers++]));
+      else if (f.kind == CdrKind::boolean && booleans < q.booleans.size()) s.values.emplace_back(static_cast<bool>(q.booleans[booleans++]));
+      else throw CdrError("FmuOutputs sample with fewer values than its " + std::to_string(layout.fields.size()) + " fields (" +
+                          fields_text(layout) + ")");
+    }
+    if (reals != q.reals.size() || integers != q.integers.size() || booleans != q.booleans.size())
+      throw CdrError("FmuOutputs sample with more values than its fields (" + fields_text(layout) + ")");
+    return s;
+  }
   for (const auto& f : layout.fields) {
     switch (f.kind) {
       case CdrKind::f64: s.values.emplace_back(c.scalar<double>()); break;

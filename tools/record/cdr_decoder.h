@@ -12,6 +12,8 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <map>
+#include <optional>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -20,6 +22,7 @@
 #include <vector>
 
 #include "mechsim/transport/messages.h"
+#include "mechsim/transport/topic_types.h"
 
 namespace mechsim::recorder {
 
@@ -36,7 +39,29 @@ struct MessageLayout {
   std::string idl_file;   // under idl/, e.g. "cam.idl"
   std::vector<CdrField> fields;
   int field_index(std::string_view name) const;  // -1 when absent
+  // FmuOutputs (idl/fmu.idl): the fields (f64, i32, boolean) travel in its three sequences,
+  // each kind in field order. The generic layout find_layout gives has no fields: the
+  // names are an FMU participant's (layout_of its topic type, a channel's "mechsim.fields"
+  // metadata, or unnamed_fmu_layout).
+  bool sequences = false;
 };
+
+// The layout of a topic type as the nodes publish it (an FMU participant's with its names).
+MessageLayout layout_of(const transport::TopicType& type);
+// The MCAP channel metadata key under which the recorder writes an FmuOutputs topic's field
+// names and kinds ("y:f64,impacts:i32,faulted:boolean"), and the two directions.
+inline constexpr const char* kFieldsMetadataKey = "mechsim.fields";
+std::string fields_text(const MessageLayout& layout);
+// Throws CdrError for text that is not such a list.
+MessageLayout fmu_layout_from_text(std::string_view text);
+// The layout of a recorded channel: by its schema's type name, and for FmuOutputs with the
+// names of the channel's "mechsim.fields" metadata when it has them (else no fields: see
+// unnamed_fmu_layout). nullopt for a type mechsim does not know. Throws CdrError for bad
+// metadata.
+std::optional<MessageLayout> channel_layout(std::string_view type_name, const std::map<std::string, std::string>& metadata);
+// An FmuOutputs sample's layout where the names are not known: reals[0], ..., integers[0],
+// ..., booleans[0], ... as many as the sample carries. Throws CdrError.
+MessageLayout unnamed_fmu_layout(std::span<const std::byte> cdr);
 
 // The layouts of every type mechsim publishes: the data types built from the field lists
 // of transport/topic_types.h (f64 -> double, boolean -> boolean); Control and Status,

@@ -158,7 +158,9 @@ class RecorderImpl final : public Recorder {
     auto schema = schemas_.find(layout.type_name);
     if (schema == schemas_.end())
       schema = schemas_.emplace(layout.type_name, writer_->add_schema(layout.type_name, "omgidl", schema_text(layout))).first;
-    s->channel = writer_->add_channel(schema->second, topic, "cdr", {{"qos", qos_text(transport::topic_kind(topic))}});
+    std::map<std::string, std::string> metadata{{"qos", qos_text(transport::topic_kind(topic))}};
+    if (auto it = options_.topic_fields.find(topic); it != options_.topic_fields.end()) metadata[kFieldsMetadataKey] = it->second;
+    s->channel = writer_->add_channel(schema->second, topic, "cdr", metadata);
     std::lock_guard lock(mutex_);
     subscriptions_.emplace(topic, std::move(s));
   }

@@ -43,6 +43,10 @@ struct RecordOptions {
   // Topic -> IDL type (scoped or short name) of topics to subscribe to at start, before
   // their writers exist. Every entry must also be selected.
   std::map<std::string, std::string> topic_types;
+  // FmuOutputs topics' field lists (cdr_decoder.h fields_text), written into their
+  // channels' metadata as "mechsim.fields", so that bag and third-party readers know the
+  // FMU's variable names.
+  std::map<std::string, std::string> topic_fields;
   record::Compression compression = record::Compression::zstd;
   // How often the recording thread wakes without data to close a due chunk
   // (McapWriter::flush_if_due) and look at discovery.

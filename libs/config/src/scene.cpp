@@ -353,7 +353,8 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   for (const std::string& name : participants.keys()) {
     ConfigNode p = participants.child(name);
     if (!valid_name(name)) p.fail("expected an instance name of letters, digits and '_'");
-    p.allow_only({"type", "params", "dds", "host", "process", "solver", "realtime", "restart", "fmu", "testing"});
+    p.allow_only({"type", "params", "dds", "host", "process", "solver", "realtime", "restart", "fmu", "testing", "interface", "step",
+                  "parameters"});
     ParticipantSpec spec;
     spec.name = name;
     if (auto t = p.optional_child("testing")) {
@@ -399,7 +400,39 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
     if (auto s = p.optional_child("solver")) spec.solver = parse_solver(*s);
     if (scene.time.adaptive) adaptive_solver_tolerances(spec.solver, scene.time.adaptive->tolerance);
     spec.params = p.has("params") ? p.child("params") : ConfigNode::from_string("{}", root.file());
-    if (p.has("fmu")) spec.fmu = p.child("fmu");
+    // An FMU file is relative to the scene file when written in it, to the working folder
+    // when given with --set; written back absolute, so that the run folder's copy of the
+    // scene (what the nodes read) names the same file.
+    const auto absolute_fmu_file = [&](const std::string& key) {
+      const std::string dotted = "participants." + name + "." + key;
+      const std::filesystem::path f(root.child("participants").child(name).child("fmu").is_map()
+                                        ? root.child("participants").child(name).child("fmu").string("file")
+                                        : root.child("participants").child(name).string("fmu"));
+      const bool from_file = std::none_of(overrides.begin(), overrides.end(),
+                                          [&](const std::string& o) { return o.rfind(dotted + "=", 0) == 0; });
+      scene.root.set_override(dotted, std::filesystem::absolute(f.is_absolute() || !from_file ? f : std::filesystem::path(path).parent_path() / f)
+                                    .lexically_normal()
+                                    .string());
+      p = root.child("participants").child(name);
+    };
+    if (p.has("fmu")) absolute_fmu_file(p.child("fmu").is_map() ? "fmu.file" : "fmu");
+    if (spec.type == "fmu") {
+      // A participant that is an FMU with ports of its own: `fmu: FILE` and its settings
+      // beside it, or the map `fmu: {file, interface, step, parameters}` of an FMU in place.
+      if (!p.has("fmu")) p.fail("expected `fmu: FILE` for a participant of type fmu");
+      if (p.child("fmu").is_map()) {
+        for (const char* key : {"interface", "step", "parameters"})
+          if (p.has(key)) p.child(key).fail("expected it inside the fmu: map (or `fmu: FILE` with it beside)");
+        spec.fmu = p.child("fmu");
+      } else {
+        spec.fmu_participant = p;
+      }
+      if (p.has("params")) p.child("params").fail("expected no params: for an FMU participant (its parameters: are the FMU's)");
+    } else {
+      for (const char* key : {"interface", "step", "parameters"})
+        if (p.has(key)) p.child(key).fail("expected it only beside `fmu: FILE` in a participant of type fmu");
+      if (p.has("fmu")) spec.fmu = p.child("fmu");
+    }
     spec.key_path = p.path();
     scene.participants.push_back(std::move(spec));
   }
@@ -423,6 +456,19 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
       ConnectionSpec spec;
       spec.from = c.string("from");
       spec.to = c.string("to");
+      // `participant.port` on both sides, or on neither.
+      const auto split = [](std::string& participant, std::string& port) {
+        const auto dot = participant.find('.');
+        if (dot == std::string::npos) return;
+        port = participant.substr(dot + 1);
+        participant.resize(dot);
+      };
+      split(spec.from, spec.from_field);
+      split(spec.to, spec.to_input);
+      if (spec.from_field.empty() != spec.to_input.empty())
+        c.child(spec.from_field.empty() ? "from" : "to")
+            .fail("expected participant.port on both sides of a port-level connection (from: slide.spindle_angle, "
+                  "to: ctrl.phi), or participant names on both");
       spec.key_path = c.path();
       spec.coupling = c.optional_child("coupling");
       spec.initial = c.optional_child("initial");
@@ -441,7 +487,8 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
         spec.reconstruction = static_cast<Reconstruction>(std::find(names.begin(), names.end(), r) - names.begin());
       }
       for (const auto& other : scene.connections)
-        if (other.from == spec.from && other.to == spec.to) c.fail("expected each from -> to pair once (duplicate of " + other.key_path + ")");
+        if (other.from == spec.from && other.to == spec.to && other.from_field == spec.from_field && other.to_input == spec.to_input)
+          c.fail("expected each from -> to pair once (duplicate of " + other.key_path + ")");
       scene.connections.push_back(spec);
     }
   }

@@ -188,7 +188,17 @@ void NodeLoop::initialise() {
 }
 
 void NodeLoop::take_step() {
-  stepper_.step(values_);
+  try {
+    stepper_.step(values_);
+  } catch (const NodeFailure&) {
+    throw;
+  } catch (const std::exception& e) {
+    // A model's own failure (an FMU's step returning an error, a solver giving up): say
+    // which step it was, so the run's report names it.
+    throw NodeFailure(transport::NodeError::other, "step " + std::to_string(stepper_.step()) + " -> " +
+                                                       std::to_string(stepper_.step() + 1) + " (t = " +
+                                                       std::to_string(stepper_.time()) + " s): " + e.what());
+  }
   publish();
   rollback_.step_taken();
   notify_observers(false);

@@ -2,6 +2,8 @@
 
 #include "fmu_participant.h"
 
+#include "mechsim/fmi/co_simulation_block.h"
+
 #include "mechsim/config/units.h"
 #include "mechsim/cosim/nc_params.h"
 
@@ -92,6 +94,53 @@ void plan_interface_jacobian_cut(const config::Scene& scene, const config::Conne
     cut.key_path = where;
     n->cut = std::move(cut);
   }
+}
+
+// A port-level connection `from: P.field, to: Q.input`: P's topic field feeds Q's block
+// input, each named by the scene, in the same unit. Connections between the same two
+// participants share one edge (one reader of P's topic), so they must agree on order and
+// reconstruction.
+void plan_port_connection(const config::Scene& scene, const config::ConnectionSpec& c, PlannedNode& from, PlannedNode& to) {
+  const auto names = [](const auto& list) {
+    std::string known;
+    for (const auto& item : list) known += (known.empty() ? "" : ", ") + item.name;
+    return known;
+  };
+  const transport::TopicType& type = *from.type->publishes;
+  const int f = type.field_index(c.from_field);
+  if (f < 0 || from.published_outputs[static_cast<std::size_t>(f)] < 0)
+    refuse(scene, c.key_path + ".from", "expected an output '" + c.from + "' publishes (" + names(type.fields) + "), got '" +
+                                            c.from_field + "'");
+  const int i = to.block->input_index(c.to_input);
+  if (i < 0)
+    refuse(scene, c.key_path + ".to", "expected an input of '" + c.to + "' (" + names(to.block->inputs()) + "), got '" +
+                                          c.to_input + "'");
+  const auto& out = from.block->outputs()[static_cast<std::size_t>(from.published_outputs[static_cast<std::size_t>(f)])];
+  check_connection_units(scene, c.key_path, c.from + "." + c.from_field, out.unit, from.fmu.get(), c.to + "." + c.to_input,
+                         to.block->inputs()[static_cast<std::size_t>(i)].unit, to.fmu.get());
+  if (c.initial) refuse(scene, c.key_path + ".initial", "expected no initial values on a port-level connection");
+  for (const auto& other : to.inputs)
+    for (const auto& [of, oi] : other.field_to_input)
+      if (oi == i)
+        refuse(scene, c.key_path, "expected each input of '" + c.to + "' fed once: input '" + c.to_input +
+                                      "' is already fed by '" + other.from + "'");
+  for (auto& edge : to.inputs)
+    if (edge.from == c.from) {
+      if (edge.order != c.order || edge.reconstruction != c.reconstruction)
+        refuse(scene, c.key_path, "expected the same order and reconstruction on every connection from '" + c.from + "' to '" +
+                                      c.to + "' (they share one reader of " + from.topic + ")");
+      edge.field_to_input.emplace_back(f, i);
+      return;
+    }
+  InboundEdge edge;
+  edge.from = c.from;
+  edge.topic = from.topic;
+  edge.type = &type;
+  edge.order = c.order;
+  edge.reconstruction = c.reconstruction;
+  edge.field_to_input.emplace_back(f, i);
+  to.inputs.push_back(std::move(edge));
+  ++from.subscriber_count;
 }
 
 // The times in (t0, t_end) at which a shaft turning as `rotation` brings the angle to
@@ -226,10 +275,10 @@ ScenePlan ScenePlan::build_time_run(const config::Scene& scene) {
     PlannedNode node;
     node.spec = &spec;
     node.type = find_node_type(spec.type);
-    if (!node.type) {
+    if (!node.type && spec.type != kFmuNodeType) {
       std::string known;
       for (const auto& t : node_types()) known += (known.empty() ? "" : ", ") + t.name;
-      refuse(scene, spec.key_path + ".type", "expected a node type (" + known + "), got '" + spec.type + "'");
+      refuse(scene, spec.key_path + ".type", "expected a node type (" + known + ", fmu), got '" + spec.type + "'");
     }
     // The element at the cut of any connection to or from this participant.
     const config::ConfigNode* coupling = nullptr;
@@ -245,14 +294,22 @@ ScenePlan ScenePlan::build_time_run(const config::Scene& scene) {
       refuse(scene, spec.key_path + ".params", std::string("parameters a ") + spec.type + " accepts (" + e.what() + ")");
     };
     try {
-      node.block = node.type->make_block(spec.params, coupling);
+      if (spec.type == kFmuNodeType) {
+        BuiltFmuParticipant built = make_fmu_participant(scene, spec, coupling);
+        node.fmu = std::move(built.participant);
+        node.type = &node.fmu->node_type;
+        node.block = std::move(built.block);
+      } else {
+        node.block = node.type->make_block(spec.params, coupling);
+      }
       // An FMU in place of the native block, which stays the template of its ports.
-      if (spec.fmu) node.block = make_fmu_block(scene, spec, *node.type, *node.block, coupling);
+      if (spec.fmu && !node.fmu) node.block = make_fmu_block(scene, spec, *node.type, *node.block, coupling);
     } catch (const std::invalid_argument& e) {
       refuse_params(e);
     } catch (const std::domain_error& e) {
       refuse_params(e);
     }
+    node.steps_itself = dynamic_cast<const fmi::CoSimulationBlock*>(node.block.get()) != nullptr;
     node.topic = spec.name + "/" + node.type->topic_suffix;
     for (const auto& field : node.type->publishes->fields) {
       // -1: a field this configuration does not compute (published as NaN).
@@ -268,6 +325,13 @@ ScenePlan ScenePlan::build_time_run(const config::Scene& scene) {
       plan_interface_jacobian_cut(scene, c, from, to);
       continue;
     }
+    if (!c.from_field.empty()) {
+      plan_port_connection(scene, c, from, to);
+      continue;
+    }
+    if (from.fmu || to.fmu)
+      refuse(scene, c.key_path, "expected a port-level connection (from: " + c.from + ".OUTPUT, to: " + c.to +
+                                    ".INPUT) to or from an FMU participant");
     const InputGroup* group = to.type->group_for(*from.type->publishes);
     if (!group)
       refuse(scene, c.key_path, "expected a connection the node types support: a " + to.type->name +

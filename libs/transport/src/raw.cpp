@@ -23,6 +23,7 @@ TopicKind topic_kind(std::string_view topic) {
 std::vector<std::string> raw_type_names() {
   std::vector<std::string> names;
   for (const TopicType* t : all_topic_types()) names.push_back(t->idl_name);
+  names.push_back(kFmuOutputsTypeName);  // every FMU participant's topic type (idl/fmu.idl)
   names.push_back("mechsim::msg::Control");
   names.push_back("mechsim::msg::Status");
   return names;

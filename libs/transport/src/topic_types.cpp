@@ -1,11 +1,41 @@
 #include "mechsim/transport/topic_types.h"
 
+#include <stdexcept>
+
 namespace mechsim::transport {
 
 int TopicType::field_index(std::string_view name) const {
   for (std::size_t i = 0; i < fields.size(); ++i)
     if (fields[i].name == name) return static_cast<int>(i);
   return -1;
+}
+
+bool TopicType::same_as(const TopicType& other) const {
+  if (this == &other) return true;
+  if (idl_name != other.idl_name || layout != other.layout || fields.size() != other.fields.size()) return false;
+  for (std::size_t i = 0; i < fields.size(); ++i)
+    if (fields[i].name != other.fields[i].name || fields[i].kind != other.fields[i].kind) return false;
+  return true;
+}
+
+TopicType fmu_topic_type(std::vector<FieldInfo> fields) {
+  TopicType t{kFmuOutputsTypeName, "fmu.idl", std::move(fields), TopicLayout::sequences};
+  for (FieldKind kind : {FieldKind::f64, FieldKind::i32, FieldKind::boolean}) {
+    std::size_t n = 0;
+    for (const auto& f : t.fields) n += f.kind == kind ? 1 : 0;
+    if (n > kFmuOutputsBound)
+      throw std::invalid_argument("FmuOutputs carries at most " + std::to_string(kFmuOutputsBound) +
+                                  " values of one type, got " + std::to_string(n));
+  }
+  return t;
+}
+
+std::vector<std::size_t> sequence_positions(const TopicType& type) {
+  std::size_t reals = 0, integers = 0, booleans = 0;
+  std::vector<std::size_t> at;
+  for (const auto& f : type.fields)
+    at.push_back(f.kind == FieldKind::f64 ? reals++ : f.kind == FieldKind::i32 ? integers++ : booleans++);
+  return at;
 }
 
 namespace {

@@ -200,6 +200,8 @@ TEST(MessageLayouts, DataTypesMirrorTheTransportFieldLists) {
   EXPECT_EQ(find_layout("CamState"), find_layout("mechsim::msg::CamState"));
   // The IDL says the same as the transport's field lists.
   for (const MessageLayout& l : all_layouts()) {
+    // FmuOutputs: its members are sequences, its fields an FMU's (fmu_participant_test).
+    if (l.sequences) continue;
     const std::vector<CdrField> parsed = struct_members(idl_files().at(l.idl_file), l.type_name.substr(l.type_name.rfind(':') + 1));
     ASSERT_EQ(parsed.size(), l.fields.size()) << l.type_name;
     for (std::size_t i = 0; i < parsed.size(); ++i) {
@@ -209,6 +211,45 @@ TEST(MessageLayouts, DataTypesMirrorTheTransportFieldLists) {
   }
   EXPECT_NE(find_layout("Control"), nullptr);
   EXPECT_EQ(find_layout("Unknown"), nullptr);
+}
+
+// FmuOutputs (idl/fmu.idl), written by hand as XCDR1 little endian: header, then reals {1.5},
+// integers {-7}, booleans {true, false}, each sequence a uint32 length and its elements
+// aligned to their size. With the names of a channel's "mechsim.fields", and without.
+TEST(CdrDecoder, FmuOutputsByTheFieldsOfItsFmu) {
+  std::vector<std::byte> b(4 + 54, std::byte{0});
+  b[1] = std::byte{0x01};
+  const auto put = [&](std::size_t at, const auto& v) { std::memcpy(b.data() + 4 + at, &v, sizeof v); };
+  put(0, std::uint64_t{42});
+  put(8, std::uint64_t{3});
+  put(16, 0.003);
+  put(24, std::uint32_t{1});
+  put(32, 1.5);  // aligned to 8
+  put(40, std::uint32_t{1});
+  put(44, std::int32_t{-7});
+  put(48, std::uint32_t{2});
+  b[4 + 52] = std::byte{1};
+  const MessageLayout named = fmu_layout_from_text("y:f64,impacts:i32,contact:boolean,faulted:boolean");
+  EXPECT_EQ(fields_text(named), "y:f64,impacts:i32,contact:boolean,faulted:boolean");
+  const DecodedSample s = decode_sample(b, named);
+  EXPECT_EQ(s.header.step, 3u);
+  ASSERT_EQ(s.values.size(), 4u);
+  EXPECT_EQ(as_number(s.values[0]), 1.5);
+  EXPECT_EQ(as_number(s.values[1]), -7.0);
+  EXPECT_EQ(to_text(s.values[2]), "true");
+  EXPECT_EQ(to_text(s.values[3]), "false");
+  const MessageLayout unnamed = unnamed_fmu_layout(b);
+  ASSERT_EQ(unnamed.fields.size(), 4u);
+  EXPECT_EQ(unnamed.fields[0].name, "reals[0]");
+  EXPECT_EQ(unnamed.fields[3].name, "booleans[1]");
+  // Another FMU's field list does not fit the sample: refused, not misread.
+  EXPECT_THROW(decode_sample(b, fmu_layout_from_text("y:f64,z:f64")), CdrError);
+  EXPECT_THROW(decode_sample(b, fmu_layout_from_text("y:f64")), CdrError);
+  EXPECT_THROW(fmu_layout_from_text("y:float"), CdrError);
+  // The channel metadata picks the names; without it the generic layout has none.
+  EXPECT_EQ(channel_layout("mechsim::msg::FmuOutputs", {{kFieldsMetadataKey, "y:f64"}})->fields.size(), 1u);
+  EXPECT_TRUE(channel_layout("mechsim::msg::FmuOutputs", {})->fields.empty());
+  EXPECT_FALSE(channel_layout("Unknown", {}).has_value());
 }
 
 TEST(IdlSchema, IsSelfContainedIdlWithoutPreprocessorLines) {

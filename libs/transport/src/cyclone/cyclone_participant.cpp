@@ -12,6 +12,10 @@
 #include "control.h"
 #include "cyclone_qos.h"
 #include "cyclone_types.h"
+#include "fmu.h"
+
+#include <cstdint>
+#include <limits>
 #include "mechsim/transport/raw.h"
 #include "status.h"
 
@@ -180,6 +184,82 @@ class CycloneSampleReader final : public SampleReader {
   dds_entity_t reader_;
   const CycloneType& type_;
   std::vector<char> buffer_;
+};
+
+// An FMU participant's topic (layout sequences, idl/fmu.idl): the fields split by kind into
+// FmuOutputs' three sequences. The writer lends its own buffers to the sample (_release
+// false); the reader's sample owns what Cyclone allocates and frees it at the end.
+class CycloneSequenceWriter final : public SampleWriter {
+ public:
+  CycloneSequenceWriter(dds_entity_t writer, const TopicType& type) : writer_(writer), type_(type), at_(sequence_positions(type)) {
+    for (const auto& f : type.fields) {
+      if (f.kind == FieldKind::f64) reals_.push_back(0.0);
+      else if (f.kind == FieldKind::i32) integers_.push_back(0);
+      else booleans_.push_back(0);
+    }
+  }
+  ~CycloneSequenceWriter() override { dds_delete(writer_); }
+  void write(const SampleHeader& header, std::span<const double> values) override {
+    if (values.size() != type_.fields.size()) throw std::logic_error("write " + type_.idl_name + ": wrong number of values");
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      const FieldKind kind = type_.fields[i].kind;
+      if (kind == FieldKind::f64) reals_[at_[i]] = values[i];
+      else if (kind == FieldKind::i32) integers_[at_[i]] = static_cast<std::int32_t>(values[i]);
+      else booleans_[at_[i]] = values[i] != 0.0;
+    }
+    mechsim_msg_FmuOutputs m{};
+    m.header = {header.run_id, header.step, header.t};
+    m.reals = {static_cast<uint32_t>(reals_.size()), static_cast<uint32_t>(reals_.size()), reals_.data(), false};
+    m.integers = {static_cast<uint32_t>(integers_.size()), static_cast<uint32_t>(integers_.size()), integers_.data(), false};
+    m.booleans = {static_cast<uint32_t>(booleans_.size()), static_cast<uint32_t>(booleans_.size()),
+                  reinterpret_cast<bool*>(booleans_.data()), false};
+    dds_return_t rc = dds_write(writer_, &m);
+    if (rc != DDS_RETCODE_OK) fail("write " + type_.idl_name, rc);
+  }
+  int matched_readers() const override { return partner_readers_matched(writer_); }
+  int matched_readers_including_tools() const override { return publication_matched(writer_); }
+  void flush(std::chrono::nanoseconds timeout) override { dds_wait_for_acks(writer_, timeout.count()); }
+
+ private:
+  dds_entity_t writer_;
+  TopicType type_;  // a copy: FMU topic types are made per plan
+  std::vector<std::size_t> at_;
+  std::vector<double> reals_;
+  std::vector<std::int32_t> integers_;
+  std::vector<char> booleans_;  // bool-sized, unlike std::vector<bool>
+  static_assert(sizeof(bool) == sizeof(char));
+};
+
+class CycloneSequenceReader final : public SampleReader {
+ public:
+  CycloneSequenceReader(dds_entity_t reader, const TopicType& type) : reader_(reader), type_(type), at_(sequence_positions(type)) {}
+  ~CycloneSequenceReader() override {
+    dds_delete(reader_);
+    dds_sample_free(&sample_, &mechsim_msg_FmuOutputs_desc, DDS_FREE_CONTENTS);
+  }
+  bool take(SampleHeader& header, std::vector<double>& values) override {
+    if (!take_one(reader_, &sample_)) return false;
+    header = {sample_.header.run_id, sample_.header.step, sample_.header.t};
+    // A sample shorter than the type (another FMU on the topic) leaves NaN, which the
+    // sample gate refuses as implausible.
+    values.assign(type_.fields.size(), std::numeric_limits<double>::quiet_NaN());
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      const FieldKind kind = type_.fields[i].kind;
+      const std::size_t j = at_[i];
+      if (kind == FieldKind::f64 && j < sample_.reals._length) values[i] = sample_.reals._buffer[j];
+      else if (kind == FieldKind::i32 && j < sample_.integers._length) values[i] = sample_.integers._buffer[j];
+      else if (kind == FieldKind::boolean && j < sample_.booleans._length) values[i] = sample_.booleans._buffer[j] ? 1.0 : 0.0;
+    }
+    return true;
+  }
+  int matched_writers() const override { return subscription_matched(reader_); }
+  std::vector<std::string> matched_writer_ids() const override { return describe_matched_writers(reader_); }
+
+ private:
+  dds_entity_t reader_;
+  TopicType type_;
+  std::vector<std::size_t> at_;
+  mechsim_msg_FmuOutputs sample_{};
 };
 
 class CycloneControlWriter final : public ControlWriter {
@@ -393,6 +473,14 @@ dds_entity_t CycloneParticipant::attach_reader(dds_entity_t reader) {
 }
 
 std::unique_ptr<SampleWriter> CycloneParticipant::data_writer(const std::string& topic_name, const TopicType& type, bool redundant) {
+  if (type.layout == TopicLayout::sequences) {
+    Qos qos;
+    set_qos(qos, redundant ? QosKind::redundant : QosKind::data);
+    const std::string name = redundant ? redundant_topic(topic_name) : topic_name;
+    dds_entity_t w = check(dds_create_writer(participant_, topic(name, &mechsim_msg_FmuOutputs_desc), qos.q, nullptr),
+                           "create writer on " + name);
+    return std::make_unique<CycloneSequenceWriter>(w, type);
+  }
   const CycloneType& ct = cyclone_type(type);
   Qos qos;
   set_qos(qos, redundant ? QosKind::redundant : QosKind::data);
@@ -402,6 +490,14 @@ std::unique_ptr<SampleWriter> CycloneParticipant::data_writer(const std::string&
 }
 
 std::unique_ptr<SampleReader> CycloneParticipant::data_reader(const std::string& topic_name, const TopicType& type, bool redundant) {
+  if (type.layout == TopicLayout::sequences) {
+    Qos qos;
+    set_qos(qos, redundant ? QosKind::redundant : QosKind::data);
+    const std::string name = redundant ? redundant_topic(topic_name) : topic_name;
+    dds_entity_t r = check(dds_create_reader(participant_, topic(name, &mechsim_msg_FmuOutputs_desc), qos.q, nullptr),
+                           "create reader on " + name);
+    return std::make_unique<CycloneSequenceReader>(attach_reader(r), type);
+  }
   const CycloneType& ct = cyclone_type(type);
   Qos qos;
   set_qos(qos, redundant ? QosKind::redundant : QosKind::data);

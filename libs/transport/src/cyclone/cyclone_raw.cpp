@@ -22,6 +22,7 @@
 #include "control.h"
 #include "cyclone_qos.h"
 #include "cyclone_types.h"
+#include "fmu.h"
 #include "dds/dds.h"
 #include "dds/ddsi/ddsi_cdrstream.h"
 #include "dds/ddsi/ddsi_serdata.h"
@@ -39,6 +40,7 @@ constexpr const char* kStatusType = "mechsim::msg::Status";
 const dds_topic_descriptor_t* descriptor_of(std::string_view scoped) {
   if (scoped == kControlType) return &mechsim_msg_Control_desc;
   if (scoped == kStatusType) return &mechsim_msg_Status_desc;
+  if (scoped == kFmuOutputsTypeName) return &mechsim_msg_FmuOutputs_desc;
   if (const TopicType* t = find_topic_type(scoped); t && t->idl_name == scoped)
     return cyclone::cyclone_type(*t).descriptor;
   return nullptr;

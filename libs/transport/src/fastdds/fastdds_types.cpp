@@ -1,5 +1,7 @@
 #include "fastdds_types.h"
 
+#include <limits>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 
@@ -7,6 +9,7 @@
 #include "fastddsgen/couplingPubSubTypes.h"
 #include "fastddsgen/cvtPubSubTypes.h"
 #include "fastddsgen/followerPubSubTypes.h"
+#include "fastddsgen/fmuPubSubTypes.h"
 #include "fastddsgen/servoPubSubTypes.h"
 #include "fastddsgen/slidePubSubTypes.h"
 #include "fastddsgen/stepPubSubTypes.h"
@@ -72,6 +75,59 @@ class Binding final : public FastType {
  private:
   const TopicType* type_;
   std::vector<Slot<Msg>> slots_;
+};
+
+// An FMU participant's topic type (layout sequences): its fields split by kind into
+// FmuOutputs' three sequences, in field order.
+class FmuOutputsSample final : public FastSample {
+ public:
+  explicit FmuOutputsSample(const TopicType& type) : type_(type), at_(sequence_positions(type)) {
+    for (const auto& f : type.fields) (f.kind == FieldKind::f64 ? reals_ : f.kind == FieldKind::i32 ? integers_ : booleans_)++;
+  }
+  void* data() override { return &msg_; }
+  void store(const SampleHeader& header, std::span<const double> values) override {
+    msg_.header().run_id(header.run_id);
+    msg_.header().step(header.step);
+    msg_.header().t(header.t);
+    msg_.reals().resize(reals_);
+    msg_.integers().resize(integers_);
+    msg_.booleans().resize(booleans_);
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      const FieldKind kind = type_.fields[i].kind;
+      if (kind == FieldKind::f64) msg_.reals()[at_[i]] = values[i];
+      else if (kind == FieldKind::i32) msg_.integers()[at_[i]] = static_cast<std::int32_t>(values[i]);
+      else msg_.booleans()[at_[i]] = values[i] != 0.0;
+    }
+  }
+  void load(SampleHeader& header, std::vector<double>& values) override {
+    header = {msg_.header().run_id(), msg_.header().step(), msg_.header().t()};
+    values.assign(type_.fields.size(), std::numeric_limits<double>::quiet_NaN());
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      const FieldKind kind = type_.fields[i].kind;
+      // A sample shorter than the type (another FMU on the topic) leaves NaN, which the
+      // sample gate refuses as implausible.
+      if (kind == FieldKind::f64 && at_[i] < msg_.reals().size()) values[i] = msg_.reals()[at_[i]];
+      else if (kind == FieldKind::i32 && at_[i] < msg_.integers().size()) values[i] = msg_.integers()[at_[i]];
+      else if (kind == FieldKind::boolean && at_[i] < msg_.booleans().size()) values[i] = msg_.booleans()[at_[i]] ? 1.0 : 0.0;
+    }
+  }
+
+ private:
+  const TopicType& type_;
+  std::vector<std::size_t> at_;
+  std::size_t reals_ = 0, integers_ = 0, booleans_ = 0;
+  mechsim::msg::FmuOutputs msg_;
+};
+
+class FmuOutputsBinding final : public FastType {
+ public:
+  explicit FmuOutputsBinding(const TopicType& type) : type_(type) {}
+  const TopicType& topic_type() const override { return type_; }
+  eprosima::fastdds::dds::TopicDataType* make_type_support() const override { return new mechsim::msg::FmuOutputsPubSubType(); }
+  std::unique_ptr<FastSample> make_sample() const override { return std::make_unique<FmuOutputsSample>(type_); }
+
+ private:
+  TopicType type_;  // a copy: FMU topic types are made per plan
 };
 
 #define MECHSIM_F64(Msg, field) Slot<Msg>{#field, static_cast<double& (Msg::*)()>(&Msg::field), nullptr}
@@ -162,6 +218,15 @@ std::vector<std::unique_ptr<FastType>> make_bindings() {
 }  // namespace
 
 const FastType& fast_type(const TopicType& type) {
+  if (type.layout == TopicLayout::sequences) {
+    // One binding per distinct FMU topic type, kept for the process's life.
+    static std::mutex mutex;
+    static std::vector<std::unique_ptr<FastType>> fmu_bindings;
+    std::lock_guard<std::mutex> lock(mutex);
+    for (const auto& b : fmu_bindings)
+      if (b->topic_type().same_as(type)) return *b;
+    return *fmu_bindings.emplace_back(std::make_unique<FmuOutputsBinding>(type));
+  }
   static const std::vector<std::unique_ptr<FastType>> bindings = make_bindings();
   for (const auto& b : bindings)
     if (&b->topic_type() == &type) return *b;

@@ -1,6 +1,7 @@
 #include "inproc_participant.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <atomic>
 #include <condition_variable>
 #include <deque>
@@ -82,11 +83,12 @@ class Writer final : public SampleWriter {
     std::vector<double> v(values.begin(), values.end());
     for (std::size_t i = 0; i < v.size(); ++i)
       if (type.fields[i].kind == FieldKind::boolean) v[i] = v[i] != 0.0 ? 1.0 : 0.0;
+      else if (type.fields[i].kind == FieldKind::i32) v[i] = static_cast<std::int32_t>(v[i]);
     std::vector<Notifier*> to_wake;
     {
       std::lock_guard<std::mutex> l(d_->m);
       for (DataQueue* q : d_->data_readers)
-        if (q->topic == key_.first && q->type == key_.second) {
+        if (q->topic == key_.first && q->type->same_as(*key_.second)) {
           q->samples.emplace_back(header, v);
           ++q->notifier->unread;
           to_wake.push_back(q->notifier.get());
@@ -97,7 +99,7 @@ class Writer final : public SampleWriter {
   int matched_readers() const override {
     std::lock_guard<std::mutex> l(d_->m);
     return static_cast<int>(std::count_if(d_->data_readers.begin(), d_->data_readers.end(), [&](const DataQueue* q) {
-      return q->topic == key_.first && q->type == key_.second;
+      return q->topic == key_.first && q->type->same_as(*key_.second);
     }));
   }
   // Delivery is complete when write() returns.
@@ -134,8 +136,10 @@ class Reader final : public SampleReader {
   }
   int matched_writers() const override {
     std::lock_guard<std::mutex> l(d_->m);
-    auto it = d_->data_writers.find({q_.topic, q_.type});
-    return it == d_->data_writers.end() ? 0 : it->second;
+    int n = 0;
+    for (const auto& [key, count] : d_->data_writers)
+      if (key.first == q_.topic && key.second->same_as(*q_.type)) n += count;
+    return n;
   }
 
  private:

@@ -106,12 +106,20 @@ struct ParticipantSpec {
   // `fmu: {file, interface, step, parameters}`: an FMU plays this participant in place of
   // its node type's native block (libs/cosim fmu_participant.h, docs/fmi.md).
   std::optional<ConfigNode> fmu;
+  // `type: fmu`: the participant's own map, which holds `fmu: FILE` and its `interface`,
+  // `step` and `parameters` beside it (docs/fmi.md, "FMU participants").
+  std::optional<ConfigNode> fmu_participant;
   std::string key_path;  // "participants.cam" for error messages
 };
 
 struct ConnectionSpec {
   std::string from;  // publishing participant
   std::string to;    // subscribing participant
+  // A port-level connection (`from: slide.spindle_angle, to: ctrl.phi`, the way an FMU
+  // participant's ports are joined): the publisher's topic field and the subscriber's block
+  // input. Both empty: the node types' own mapping of the whole topic (docs/scenes.md).
+  std::string from_field;
+  std::string to_input;
   EdgeOrder order = EdgeOrder::jacobi;
   Reconstruction reconstruction = Reconstruction::hold;
   // The element at the cut (e.g. the motor-spindle spring-damper), when the connection

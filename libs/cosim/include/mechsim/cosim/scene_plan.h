@@ -17,6 +17,8 @@
 
 namespace mechsim::cosim {
 
+struct FmuParticipant;  // fmu_participant.h
+
 struct InboundEdge {
   std::string from;                         // publishing participant
   std::string topic;                        // its topic name
@@ -45,6 +47,12 @@ struct PlannedCut {
 struct PlannedNode {
   const config::ParticipantSpec* spec = nullptr;
   const NodeType* type = nullptr;
+  // `type: fmu`: the FMU and the node type made for it alone (`type` points into it).
+  std::shared_ptr<const FmuParticipant> fmu;
+  // A co-simulation FMU (type: fmu, or in place of a native block): it steps itself at its
+  // own step, in the run and inside the monolithic reference alike, which therefore has no
+  // continuous model of it (the error report says so).
+  bool steps_itself = false;
   std::unique_ptr<models::Block> block;
   std::string topic;                    // "<name>/<suffix>"
   std::vector<int> published_outputs;   // block output index of each topic field, -1: not computed (NaN)

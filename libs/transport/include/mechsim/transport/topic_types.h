@@ -1,9 +1,12 @@
 // The data topic types of idl/*.idl as seen by node logic: a header plus a flat list of
 // scalar fields, each carried as a double on the block side (booleans as 0/1). The field
 // lists here mirror the IDL in order; tests/unit/transport checks them against the .idl
-// files so the two cannot drift apart.
+// files so the two cannot drift apart. The one exception is FmuOutputs (idl/fmu.idl): its
+// fields are a participant's FMU output variables, so each FMU participant has a topic type
+// of its own, made by fmu_topic_type, that travels as that one IDL type.
 #pragma once
 
+#include <cstddef>
 #include <limits>
 #include <string>
 #include <string_view>
@@ -11,7 +14,7 @@
 
 namespace mechsim::transport {
 
-enum class FieldKind { f64, boolean };
+enum class FieldKind { f64, boolean, i32 };  // i32: FMU Integer/Int32 outputs only
 
 struct FieldInfo {
   std::string name;
@@ -24,12 +27,30 @@ struct FieldInfo {
   std::string unit{};  // for messages and the docs
 };
 
+// How the fields travel. members: one IDL member per field (cam.idl, ...). sequences: the
+// f64 fields in order in FmuOutputs.reals, the i32 ones in .integers, the booleans in
+// .booleans (idl/fmu.idl).
+enum class TopicLayout { members, sequences };
+
 struct TopicType {
   std::string idl_name;   // fully scoped IDL name, e.g. "mechsim::msg::CamState"
   std::string idl_file;   // file under idl/, e.g. "cam.idl"
   std::vector<FieldInfo> fields;
+  TopicLayout layout = TopicLayout::members;
   int field_index(std::string_view name) const;  // -1 when absent
+  // Two topic types a writer and a reader can share a topic with: the same IDL type and
+  // the same fields (FMU topic types are made per participant and per process).
+  bool same_as(const TopicType& other) const;
 };
+
+// FmuOutputs (idl/fmu.idl) carries at most this many values of each kind.
+inline constexpr std::size_t kFmuOutputsBound = 256;
+inline constexpr const char* kFmuOutputsTypeName = "mechsim::msg::FmuOutputs";
+// The topic type of one FMU participant: its output variables as fields (layout
+// sequences). Throws std::invalid_argument past kFmuOutputsBound values of one kind.
+TopicType fmu_topic_type(std::vector<FieldInfo> fields);
+// Where a field's value sits in its sequence: (kind, index within that kind's sequence).
+std::vector<std::size_t> sequence_positions(const TopicType& type);
 
 // All data topic types, and lookup by the short name used in code ("CamState").
 const std::vector<const TopicType*>& all_topic_types();
