@@ -50,7 +50,7 @@ TEST_F(HostBed, LineShaftAcrossFourHosts) {
   std::vector<std::string> participants{"cvt"};
   for (int k = 1; k <= stations; ++k) {
     const std::string host = "h" + std::to_string((k - 1) / per_host + 1);
-    for (const std::string p : {"cam_" + std::to_string(k), "follower_" + std::to_string(k)}) {
+    for (const std::string& p : {"cam_" + std::to_string(k), "follower_" + std::to_string(k)}) {
       participants.push_back(p);
       argv.insert(argv.end(), {"--set", "participants." + p + ".host=" + host});
     }
@@ -70,7 +70,9 @@ TEST_F(HostBed, LineShaftAcrossFourHosts) {
   ASSERT_TRUE(summary["signals"].is_object());
   EXPECT_GE(summary["signals"].size(), static_cast<std::size_t>(stations));
   for (const auto& [name, sig] : summary["signals"].items())
-    if (!sig["max_rel_error"].is_null()) EXPECT_LT(sig["max_rel_error"].get<double>(), 1e-2) << name;
+    if (!sig["max_rel_error"].is_null()) {
+      EXPECT_LT(sig["max_rel_error"].get<double>(), 1e-2) << name;
+    }
   expect_identical_node_outputs(a, b, participants, "the single-host and the four-host run");
 }
 

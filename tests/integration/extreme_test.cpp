@@ -24,14 +24,6 @@ class Extreme : public RunFolderTest {
   }
 };
 
-const json& figure(const json& s, const std::string& stat, const std::string& signal) {
-  for (const auto& f : s["report"])
-    if (f["stat"] == stat && f["signal"] == signal) return f;
-  static const json none;
-  ADD_FAILURE() << "no figure " << stat << " " << signal;
-  return none;
-}
-
 int count_events(const json& s, const std::string& kind) {
   int n = 0;
   for (const auto& e : s["events"]) n += e.value("kind", "") == kind;

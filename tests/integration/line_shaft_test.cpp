@@ -28,14 +28,6 @@ class LineShaft : public RunFolderTest {
   }
 };
 
-const json& figure(const json& s, const std::string& stat, const std::string& signal) {
-  for (const auto& f : s["report"])
-    if (f["stat"] == stat && f["signal"] == signal) return f;
-  static const json none;
-  ADD_FAILURE() << "no figure " << stat << " " << signal;
-  return none;
-}
-
 // Station 1 is the press line's cam with the same parameters, connections and step, so the
 // one-station line is the press line itself: the same model, hence the same bytes.
 TEST_F(LineShaft, OneStationIsThePressLine) {

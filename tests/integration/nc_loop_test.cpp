@@ -22,12 +22,6 @@ class NcLoop : public RunFolderTest {
   json summary() const { return RunFolderTest::summary("nc"); }
 };
 
-const json& figure(const json& s, const std::string& stat, const std::string& signal) {
-  for (const auto& f : s["report"])
-    if (f["stat"] == stat && f["signal"] == signal) return f;
-  throw std::runtime_error("no figure " + stat + " " + signal);
-}
-
 TEST_F(NcLoop, ShippedStepSceneIsStableAndAccurateAsShipped) {
   CommandResult r = launch("nc_slide_loop.yaml");
   ASSERT_EQ(r.exit_code, 0) << r.output;

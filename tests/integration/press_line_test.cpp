@@ -15,14 +15,6 @@ using nlohmann::json;
 
 class PressLine : public RunFolderTest {};
 
-const json& figure(const json& s, const std::string& stat, const std::string& signal) {
-  for (const auto& f : s["report"])
-    if (f["stat"] == stat && f["signal"] == signal) return f;
-  static const json none;
-  ADD_FAILURE() << "no figure " << stat << " " << signal;
-  return none;
-}
-
 TEST_F(PressLine, EnergyBalanceClosesAndTheRunMatchesTheReference) {
   CommandResult r = run(launch_args(scene_path("press_line.yaml"), "a"), log("a"), 120);
   ASSERT_EQ(r.exit_code, 0) << r.output;

@@ -42,6 +42,15 @@ inline void expect_identical_node_outputs(const std::filesystem::path& a, const 
   expect_identical_node_outputs(a, b, nodes, what);
 }
 
+// The figure `stat` of `signal` in a run summary's error report (a test failure if absent).
+inline const nlohmann::json& figure(const nlohmann::json& s, const std::string& stat, const std::string& signal) {
+  for (const auto& f : s["report"])
+    if (f["stat"] == stat && f["signal"] == signal) return f;
+  static const nlohmann::json none;
+  ADD_FAILURE() << "no figure " << stat << " " << signal;
+  return none;
+}
+
 class RunFolderTest : public ::testing::Test {
  protected:
   void SetUp() override {

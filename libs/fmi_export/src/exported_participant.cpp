@@ -8,21 +8,12 @@
 #include <limits>
 #include <stdexcept>
 
+#include "exact_decimal.h"
 #include "mechsim/cosim/catalog.h"
 
 namespace mechsim::fmi_export {
 
 namespace {
-
-// The shortest decimal that reads back as the same double.
-std::string exact(double v) {
-  char buf[32];
-  for (int digits = 15; digits <= 17; ++digits) {
-    std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-    if (std::strtod(buf, nullptr) == v) break;
-  }
-  return buf;
-}
 
 // The SI name of a dimension: a familiar one where there is one, else its base units.
 std::string si_unit_name(const config::Dimension& d) {

@@ -14,21 +14,13 @@
 #include <stdexcept>
 #include <unistd.h>
 
+#include "exact_decimal.h"
+
 namespace fs = std::filesystem;
 
 namespace mechsim::fmi_export {
 
 namespace {
-
-// The shortest decimal that reads back as the same double.
-std::string exact(double v) {
-  char buf[32];
-  for (int digits = 15; digits <= 17; ++digits) {
-    std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-    if (std::strtod(buf, nullptr) == v) break;
-  }
-  return buf;
-}
 
 const char* causality(VariableKind k) {
   switch (k) {
