@@ -76,6 +76,22 @@ class Security : public RunFolderTest {
     a.insert(a.end(), extra.begin(), extra.end());
     return launch_args(kScene, tag, a);
   }
+  // A secured run (tag: its runs folder). A known defect, not yet fixed: a secured Fast DDS
+  // run, signed or encrypted, now and then never gets its nodes matched (the PKI-DH
+  // handshake between two Fast DDS 2.9 participants stalls; 2 of about 45 signed starts on a
+  // loaded 2-core machine, and once an encrypted one in a suite run; "nodes not ready after
+  // 30 s"; docs/security.md, 'Protection'). One more start is allowed for that refusal
+  // alone, and said; `tag` then names the second run, which must pass every check.
+  CommandResult run_secured(std::string& tag, const std::string& layout, const std::vector<std::string>& extra) {
+    CommandResult r = run(run_args(tag, layout, true, extra), log(tag));
+    if (layout == "fastdds" && r.exit_code != 0 && r.output.find("nodes not ready after") != std::string::npos) {
+      std::fprintf(stderr, "note: secured Fast DDS run not ready (known intermittent start failure), starting once more:\n%s\n",
+                   r.output.c_str());
+      tag += "_again";
+      r = run(run_args(tag, layout, true, extra), log(tag));
+    }
+    return r;
+  }
   void expect_identical_outputs(const std::string& a, const std::string& b) {
     expect_identical_node_outputs(run_folder(a), run_folder(b), std::vector<std::string>{"servo", "tacho", "slide"}, a + " and " + b);
   }
@@ -141,15 +157,16 @@ TEST_P(SecuredRun, NodeOutputsAreByteIdenticalToAnUnsecuredRun) {
   // and is a Cyclone participant: on Fast DDS it would make the run mixed).
   const std::vector<std::string> record =
       layout == "cyclone" ? std::vector<std::string>{"--set", "record=true"} : std::vector<std::string>{};
-  const CommandResult secured = run(run_args("secured", layout, true, record), log("secured"));
+  std::string tag = "secured";
+  const CommandResult secured = run_secured(tag, layout, record);
   ASSERT_EQ(secured.exit_code, 0) << secured.output;
   EXPECT_NE(secured.output.find("DDS security: " + sec()), std::string::npos) << secured.output;
-  expect_identical_outputs("plain", "secured");
+  expect_identical_outputs("plain", tag);
   if (!record.empty()) {
-    const auto rec = summary("secured")["recording"];
+    const auto rec = summary(tag)["recording"];
     EXPECT_TRUE(rec["complete"].get<bool>()) << rec.dump(2);
   }
-  EXPECT_EQ(summary("secured")["dds_security"], sec());
+  EXPECT_EQ(summary(tag)["dds_security"], sec());
   EXPECT_TRUE(summary("plain")["dds_security"].is_null());
 }
 
@@ -504,18 +521,7 @@ TEST_P(SignedRun, NodeOutputsAreByteIdenticalToAnUnsecuredRun) {
   const CommandResult plain = run(run_args("plain", layout, false), log("plain"));
   ASSERT_EQ(plain.exit_code, 0) << plain.output;
   std::string tag = "signed";
-  CommandResult signed_run = run(run_args(tag, layout, true, {"--set", "dds.protection=sign"}), log(tag));
-  // A known defect, not yet fixed: a signed Fast DDS run now and then never gets its nodes
-  // matched (2 of about 45 starts on a loaded 2-core machine, "nodes not ready after 30 s";
-  // docs/security.md, 'Protection'). One more start is allowed for that refusal alone, and
-  // said; the second run must pass every check below.
-  if (layout == "fastdds" && signed_run.exit_code != 0 &&
-      signed_run.output.find("nodes not ready after") != std::string::npos) {
-    std::fprintf(stderr, "note: signed Fast DDS run not ready (known intermittent start failure), starting once more:\n%s\n",
-                 signed_run.output.c_str());
-    tag = "signed_again";
-    signed_run = run(run_args(tag, layout, true, {"--set", "dds.protection=sign"}), log(tag));
-  }
+  const CommandResult signed_run = run_secured(tag, layout, {"--set", "dds.protection=sign"});
   ASSERT_EQ(signed_run.exit_code, 0) << signed_run.output;
   EXPECT_NE(signed_run.output.find("DDS security: " + sec() + " (authentication, access control, signed, not encrypted"),
             std::string::npos)
