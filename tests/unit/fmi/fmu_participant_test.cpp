@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "fmu_files.h"
+#include "in_process_run.h"
 #include "mechsim/config/scene.h"
 #include "mechsim/cosim/composer.h"
 #include "mechsim/cosim/inproc_run.h"
@@ -22,6 +23,7 @@ namespace mechsim::fmi {
 namespace {
 
 using test::ScratchFolder;
+using test::runs_in_process;
 using test::test_fmu;
 
 const std::string kScene = std::string(MECHSIM_SOURCE_DIR) + "/config/scenes/nc_slide_loop.yaml";
@@ -91,12 +93,8 @@ TEST_P(FmuParticipant, ModelExchangeRunsLikeTheNativeAmplifier) {
   EXPECT_LT(worst_difference(cosim::run_reference(native_plan).log, cosim::run_reference(plan).log, where), 1e-6)
       << where;
 
-  std::filesystem::create_directories(scratch_.path("fmu_run"));
-  std::filesystem::create_directories(scratch_.path("native_run"));
-  const auto with_fmu = cosim::run_inproc(scene, {.run_dir = scratch_.path("fmu_run").string()});
-  ASSERT_TRUE(with_fmu.ok) << with_fmu.reason;
-  const auto native = cosim::run_inproc(native_scene, {.run_dir = scratch_.path("native_run").string()});
-  ASSERT_TRUE(native.ok) << native.reason;
+  ASSERT_TRUE(runs_in_process(scene, scratch_.path("fmu_run")));
+  ASSERT_TRUE(runs_in_process(native_scene, scratch_.path("native_run")));
   for (const char* node : {"servo", "tacho", "slide"}) {
     const std::string log = std::string(node) + ".outputs.bin";
     EXPECT_LT(worst_difference(cosim::read_output_log(scratch_.path("native_run/" + log).string()),
@@ -118,12 +116,8 @@ TEST_P(FmuParticipant, CoSimulationRunsLikeTheNativeSampledAmplifier) {
   const config::Scene native_scene =
       config::load_scene(kScene, {"time.end=0.02 s", "participants.servo.params.sample_time=1 ms",
                                   "participants.servo.solver.rtol=1e-10", "participants.servo.solver.atol=1e-12"});
-  std::filesystem::create_directories(scratch_.path("fmu_run"));
-  std::filesystem::create_directories(scratch_.path("native_run"));
-  const auto with_fmu = cosim::run_inproc(scene, {.run_dir = scratch_.path("fmu_run").string()});
-  ASSERT_TRUE(with_fmu.ok) << with_fmu.reason;
-  const auto native = cosim::run_inproc(native_scene, {.run_dir = scratch_.path("native_run").string()});
-  ASSERT_TRUE(native.ok) << native.reason;
+  ASSERT_TRUE(runs_in_process(scene, scratch_.path("fmu_run")));
+  ASSERT_TRUE(runs_in_process(native_scene, scratch_.path("native_run")));
   std::string where;
   for (const char* node : {"servo", "tacho", "slide"}) {
     const std::string log = std::string(node) + ".outputs.bin";
@@ -145,12 +139,8 @@ TEST_P(FmuParticipant, AdaptiveStepRunsLikeTheNativeAmplifier) {
       scratch_, "fmu: {file: " + fmu + ", interface: model-exchange, " + kParameters + "}", "fmu_adaptive.yaml");
   const std::vector<std::string> adaptive{"time.end=0.02 s", "time.step=adaptive", "time.tolerance=1e-4",
                                           "time.min=1 us", "time.max=100 us"};
-  std::filesystem::create_directories(scratch_.path("fmu_run"));
-  std::filesystem::create_directories(scratch_.path("native_run"));
-  const auto with_fmu = cosim::run_inproc(config::load_scene(path, adaptive), {.run_dir = scratch_.path("fmu_run").string()});
-  ASSERT_TRUE(with_fmu.ok) << with_fmu.reason;
-  const auto native = cosim::run_inproc(config::load_scene(kScene, adaptive), {.run_dir = scratch_.path("native_run").string()});
-  ASSERT_TRUE(native.ok) << native.reason;
+  ASSERT_TRUE(runs_in_process(config::load_scene(path, adaptive), scratch_.path("fmu_run")));
+  ASSERT_TRUE(runs_in_process(config::load_scene(kScene, adaptive), scratch_.path("native_run")));
   std::string where;
   for (const char* node : {"servo", "tacho", "slide"}) {
     const std::string log = std::string(node) + ".outputs.bin";
@@ -181,12 +171,8 @@ TEST_P(FmuParticipant, AdaptiveStepWithACoSimulationFmu) {
   for (const char* s : {"participants.servo.params.sample_time=100 us", "participants.servo.solver.rtol=1e-10",
                         "participants.servo.solver.atol=1e-12"})
     native_settings.emplace_back(s);
-  std::filesystem::create_directories(scratch_.path("fmu_run"));
-  std::filesystem::create_directories(scratch_.path("native_run"));
-  const auto with_fmu = cosim::run_inproc(config::load_scene(path, adaptive), {.run_dir = scratch_.path("fmu_run").string()});
-  ASSERT_TRUE(with_fmu.ok) << with_fmu.reason;
-  const auto native = cosim::run_inproc(config::load_scene(kScene, native_settings), {.run_dir = scratch_.path("native_run").string()});
-  ASSERT_TRUE(native.ok) << native.reason;
+  ASSERT_TRUE(runs_in_process(config::load_scene(path, adaptive), scratch_.path("fmu_run")));
+  ASSERT_TRUE(runs_in_process(config::load_scene(kScene, native_settings), scratch_.path("native_run")));
   std::string where;
   for (const char* node : {"servo", "tacho", "slide"}) {
     const std::string log = std::string(node) + ".outputs.bin";

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "fmu_files.h"
+#include "in_process_run.h"
 #include "mechsim/config/scene.h"
 #include "mechsim/cosim/composer.h"
 #include "mechsim/cosim/inproc_run.h"
@@ -19,6 +20,7 @@ namespace mechsim::fmi {
 namespace {
 
 using test::ScratchFolder;
+using test::runs_in_process;
 using test::test_fmu;
 
 std::string read_text(const std::string& path) {
@@ -177,12 +179,8 @@ TEST_F(FmuPorts, TheNcLoopWithAnAmplifierFmuJoinedPortByPort) {
   const config::Scene scene = config::load_scene(path, {"time.end=0.02 s"});
   const config::Scene native_scene =
       config::load_scene(std::string(MECHSIM_SOURCE_DIR) + "/config/scenes/nc_slide_loop.yaml", {"time.end=0.02 s"});
-  std::filesystem::create_directories(scratch_.path("fmu_run"));
-  std::filesystem::create_directories(scratch_.path("native_run"));
-  const auto with_fmu = cosim::run_inproc(scene, {.run_dir = scratch_.path("fmu_run").string()});
-  ASSERT_TRUE(with_fmu.ok) << with_fmu.reason;
-  const auto native = cosim::run_inproc(native_scene, {.run_dir = scratch_.path("native_run").string()});
-  ASSERT_TRUE(native.ok) << native.reason;
+  ASSERT_TRUE(runs_in_process(scene, scratch_.path("fmu_run")));
+  ASSERT_TRUE(runs_in_process(native_scene, scratch_.path("native_run")));
   for (const char* node : {"tacho", "slide"}) {
     const std::string log = std::string(node) + ".outputs.bin";
     const cosim::OutputLog a = cosim::read_output_log(scratch_.path("native_run/" + log).string());
