@@ -20,8 +20,9 @@ int node_group_main(int argc, char** argv) {
   // Never outlive the launcher (it may be killed without a chance to stop us).
   prctl(PR_SET_PDEATHSIG, SIGTERM);
 
-  CLI::App app{"mechsim process group: several participants of a scene as threads of one process, each its own DDS "
-               "participant (participants.<p>.process, docs/scenes.md). Normally started by `mechsim launch`."};
+  CLI::App app{"mechsim process group: several participants of a scene as threads of one process, each with its own "
+               "endpoints (Fast DDS members share one DomainParticipant; participants.<p>.process, docs/scenes.md). "
+               "Normally started by `mechsim launch`."};
   std::string scene_path, run_dir, control_writer;
   std::vector<std::string> node_names, replays;
   std::uint64_t run_id = 0;
@@ -82,7 +83,7 @@ int node_group_main(int argc, char** argv) {
           cosim::NodeRunOptions own = options;  // each member's own test seams
           apply_testing_seams(spec, own);
           return cosim::ThreadNodeHost::Parts{node_plan(scene, node, replay_of.count(node) ? replay_of[node] : ""),
-                                              transport::create_participant(spec.vendor, domain), std::move(own)};
+                                              transport::create_group_member_participant(spec.vendor, domain), std::move(own)};
         },
         options);
     threads.start_all();

@@ -41,6 +41,13 @@ std::unique_ptr<Participant> create_participant(const std::string& vendor, int d
   throw std::runtime_error("DDS vendor '" + vendor + "' is not compiled into this build");
 }
 
+std::unique_ptr<Participant> create_group_member_participant(const std::string& vendor, int domain_id) {
+#ifdef MECHSIM_HAVE_FASTDDS
+  if (vendor == "fastdds") return std::make_unique<fastdds::FastParticipant>(domain_id, security_from_environment(), true);
+#endif
+  return create_participant(vendor, domain_id);
+}
+
 void clean_up_after_killed_processes() {
 #ifdef MECHSIM_HAVE_FASTDDS
   fastdds::clean_shared_memory();

@@ -133,20 +133,20 @@ class ToolReaderTracker final : public dds::DomainParticipantListener {
   std::map<eprosima::fastrtps::rtps::GUID_t, std::string> readers_;
 };
 
-struct FastCore {
+// The DDS entities of one DomainParticipant: one per FastParticipant, or one for every
+// member of a process group (create_shared_participant, backends.h), each member then
+// keeping its own waitset (FastCore).
+struct FastDomainParticipant {
   ToolReaderTracker tool_readers;  // the participant's listener: outlives the participant
   dds::DomainParticipant* participant = nullptr;
   dds::Publisher* publisher = nullptr;
   dds::Subscriber* subscriber = nullptr;
-  std::map<std::string, dds::Topic*> topics;
-  // One waitset for wait(): a read condition per reader (triggered while the reader holds
-  // a sample, as Cyclone's) and a guard condition for wake().
-  dds::GuardCondition guard;
-  dds::WaitSet waitset;
 
-  FastCore() { waitset.attach_condition(guard); }
+  FastDomainParticipant(int domain_id, const std::optional<SecurityIdentity>& security);
+  FastDomainParticipant(const FastDomainParticipant&) = delete;
+  FastDomainParticipant& operator=(const FastDomainParticipant&) = delete;
 
-  ~FastCore() {
+  ~FastDomainParticipant() {
     if (participant == nullptr) return;
     participant->delete_contained_entities();
     dds::DomainParticipantFactory::get_instance()->delete_participant(participant);
@@ -154,12 +154,13 @@ struct FastCore {
 
   dds::Topic* topic(const std::string& name, dds::TopicDataType* type_support) {
     dds::TypeSupport type(type_support);  // owns type_support from here on
-    auto it = topics.find(name);
-    if (it != topics.end()) return it->second;
+    std::lock_guard lock(topics_mutex_);  // the members of a group create theirs at once
+    auto it = topics_.find(name);
+    if (it != topics_.end()) return it->second;
     if (participant->find_type(type.get_type_name()).empty() && participant->register_type(type) != ReturnCode::RETCODE_OK)
       fail("register type " + type.get_type_name());
     dds::Topic* t = check(participant->create_topic(name, type.get_type_name(), dds::TOPIC_QOS_DEFAULT), "create topic " + name);
-    topics.emplace(name, t);
+    topics_.emplace(name, t);
     return t;
   }
 
@@ -194,6 +195,31 @@ struct FastCore {
     return check(subscriber->create_datareader(t, qos), "create reader on " + topic_name);
   }
 
+ private:
+  std::mutex topics_mutex_;
+  std::map<std::string, dds::Topic*> topics_;
+};
+
+// What one FastParticipant owns: its DomainParticipant (perhaps shared) and one waitset for
+// wait(): a read condition per reader (triggered while the reader holds a sample, as
+// Cyclone's) and a guard condition for wake().
+struct FastCore {
+  std::shared_ptr<FastDomainParticipant> domain;
+  dds::GuardCondition guard;
+  dds::WaitSet waitset;
+
+  explicit FastCore(std::shared_ptr<FastDomainParticipant> domain_participant) : domain(std::move(domain_participant)) {
+    waitset.attach_condition(guard);
+  }
+
+  dds::DataWriter* writer(const std::string& topic_name, dds::TopicDataType* type_support, QosSetter qos_setter) {
+    return domain->writer(topic_name, type_support, qos_setter);
+  }
+  dds::DataReader* reader(const std::string& topic_name, dds::TopicDataType* type_support, QosSetter qos_setter) {
+    return domain->reader(topic_name, type_support, qos_setter);
+  }
+  void delete_writer(dds::DataWriter* writer) { domain->publisher->delete_datawriter(writer); }
+
   dds::ReadCondition* attach(dds::DataReader* reader) {
     dds::ReadCondition* c = check(
         reader->create_readcondition(dds::ANY_SAMPLE_STATE, dds::ANY_VIEW_STATE, dds::ANY_INSTANCE_STATE),
@@ -205,7 +231,7 @@ struct FastCore {
   void delete_reader(dds::DataReader* reader, dds::ReadCondition* condition) {
     waitset.detach_condition(*condition);
     reader->delete_readcondition(condition);
-    subscriber->delete_datareader(reader);
+    domain->subscriber->delete_datareader(reader);
   }
 };
 
@@ -252,7 +278,7 @@ class FastSampleWriter final : public SampleWriter, Endpoint {
  public:
   FastSampleWriter(std::shared_ptr<FastCore> core, dds::DataWriter* w, const FastType& type)
       : Endpoint(std::move(core)), writer_(w), type_(type), sample_(type.make_sample()) {}
-  ~FastSampleWriter() override { core_->publisher->delete_datawriter(writer_); }
+  ~FastSampleWriter() override { core_->delete_writer(writer_); }
   void write(const SampleHeader& header, std::span<const double> values) override {
     if (values.size() != type_.topic_type().fields.size())
       throw std::logic_error("write " + type_.topic_type().idl_name + ": wrong number of values");
@@ -261,7 +287,7 @@ class FastSampleWriter final : public SampleWriter, Endpoint {
     if (!writer_->write(sample_->data())) fail("write " + type_.topic_type().idl_name);
   }
   int matched_readers() const override {
-    return std::max(0, publication_matched(writer_) - core_->tool_readers.on_topic(writer_->get_topic()->get_name()));
+    return std::max(0, publication_matched(writer_) - core_->domain->tool_readers.on_topic(writer_->get_topic()->get_name()));
   }
   int matched_readers_including_tools() const override { return publication_matched(writer_); }
   // Waits at most 1 s, whatever the caller allows: Fast DDS 2.9 does not act on Cyclone
@@ -309,7 +335,7 @@ class FastSampleReader final : public SampleReader, Endpoint {
 class FastControlWriter final : public ControlWriter, Endpoint {
  public:
   FastControlWriter(std::shared_ptr<FastCore> core, dds::DataWriter* w) : Endpoint(std::move(core)), writer_(w) {}
-  ~FastControlWriter() override { core_->publisher->delete_datawriter(writer_); }
+  ~FastControlWriter() override { core_->delete_writer(writer_); }
   void write(const ControlMessage& m) override {
     mechsim::msg::Control c;
     c.header().run_id(m.run_id);
@@ -363,7 +389,7 @@ class FastControlReader final : public ControlReader, Endpoint {
 class FastStatusWriter final : public StatusWriter, Endpoint {
  public:
   FastStatusWriter(std::shared_ptr<FastCore> core, dds::DataWriter* w) : Endpoint(std::move(core)), writer_(w) {}
-  ~FastStatusWriter() override { core_->publisher->delete_datawriter(writer_); }
+  ~FastStatusWriter() override { core_->delete_writer(writer_); }
   void write(const StatusMessage& m) override {
     mechsim::msg::Status s;
     s.header().run_id(m.header.run_id);
@@ -440,7 +466,7 @@ class FastStatusReader final : public StatusReader, Endpoint {
 class FastAgentWriter final : public AgentWriter, Endpoint {
  public:
   FastAgentWriter(std::shared_ptr<FastCore> core, dds::DataWriter* w) : Endpoint(std::move(core)), writer_(w) {}
-  ~FastAgentWriter() override { core_->publisher->delete_datawriter(writer_); }
+  ~FastAgentWriter() override { core_->delete_writer(writer_); }
   void write(const AgentMessage& m) override {
     if (m.data.size() > kAgentChunkBytes) throw std::logic_error("agent message: more than kAgentChunkBytes of data");
     mechsim::msg::AgentMessage a;
@@ -497,8 +523,7 @@ void clean_shared_memory() {
     std::fprintf(stderr, "mechsim: 'fastdds shm clean' failed; stale Fast DDS segments may remain in /dev/shm\n");
 }
 
-FastParticipant::FastParticipant(int domain_id, const std::optional<SecurityIdentity>& security)
-    : core_(std::make_shared<FastCore>()) {
+FastDomainParticipant::FastDomainParticipant(int domain_id, const std::optional<SecurityIdentity>& security) {
   auto* factory = dds::DomainParticipantFactory::get_instance();
   // The default profile of FASTRTPS_DEFAULT_PROFILES_FILE if set, plus the security
   // properties of the identity (docs/security.md).
@@ -508,16 +533,38 @@ FastParticipant::FastParticipant(int domain_id, const std::optional<SecurityIden
   dds::DomainParticipantQos qos = factory->get_default_participant_qos();
   if (security)
     for (const auto& [name, value] : security_properties(*security, "fastdds")) qos.properties().properties().emplace_back(name, value);
-  core_->participant = check(factory->create_participant(static_cast<dds::DomainId_t>(domain_id), qos,
-                                                         &core_->tool_readers, dds::StatusMask::none()),
-                             "create participant on domain " + std::to_string(domain_id) +
-                                 (security ? " with DDS security identity '" + security->name + "' of " + security->dir : std::string()) +
-                                 (std::getenv("FASTRTPS_DEFAULT_PROFILES_FILE")
-                                      ? std::string(" (profiles from ") + std::getenv("FASTRTPS_DEFAULT_PROFILES_FILE") + ")"
-                                      : std::string()));
-  core_->publisher = check(core_->participant->create_publisher(dds::PUBLISHER_QOS_DEFAULT), "create publisher");
-  core_->subscriber = check(core_->participant->create_subscriber(dds::SUBSCRIBER_QOS_DEFAULT), "create subscriber");
+  participant = check(factory->create_participant(static_cast<dds::DomainId_t>(domain_id), qos, &tool_readers, dds::StatusMask::none()),
+                      "create participant on domain " + std::to_string(domain_id) +
+                          (security ? " with DDS security identity '" + security->name + "' of " + security->dir : std::string()) +
+                          (std::getenv("FASTRTPS_DEFAULT_PROFILES_FILE")
+                               ? std::string(" (profiles from ") + std::getenv("FASTRTPS_DEFAULT_PROFILES_FILE") + ")"
+                               : std::string()));
+  publisher = check(participant->create_publisher(dds::PUBLISHER_QOS_DEFAULT), "create publisher");
+  subscriber = check(participant->create_subscriber(dds::SUBSCRIBER_QOS_DEFAULT), "create subscriber");
 }
+
+namespace {
+
+// The DomainParticipants shared in this process, by domain and identity: a process group's
+// members each get a FastParticipant of their own (own waitset, own endpoints) on one
+// DomainParticipant, so the process has one set of Fast DDS threads, ports and discovery
+// instead of one per member (docs/performance.md). Weak: the last member to go deletes it.
+std::shared_ptr<FastDomainParticipant> shared_domain_participant(int domain_id, const std::optional<SecurityIdentity>& security) {
+  static std::mutex mutex;
+  static std::map<std::string, std::weak_ptr<FastDomainParticipant>> shared;
+  const std::string key = std::to_string(domain_id) + (security ? "|" + security->dir + "|" + security->name + "|" + security->protection : "");
+  std::lock_guard lock(mutex);
+  if (auto existing = shared[key].lock()) return existing;
+  auto created = std::make_shared<FastDomainParticipant>(domain_id, security);
+  shared[key] = created;
+  return created;
+}
+
+}  // namespace
+
+FastParticipant::FastParticipant(int domain_id, const std::optional<SecurityIdentity>& security, bool share_in_process)
+    : core_(std::make_shared<FastCore>(share_in_process ? shared_domain_participant(domain_id, security)
+                                                        : std::make_shared<FastDomainParticipant>(domain_id, security))) {}
 
 FastParticipant::~FastParticipant() = default;
 

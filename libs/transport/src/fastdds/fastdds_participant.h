@@ -20,9 +20,11 @@ void clean_shared_memory();
 // the launcher sets (config/dds/fastdds-shm.xml or fastdds-udp.xml: loopback only).
 // wait()/wake(): one WaitSet with a ReadCondition per reader (any sample state, so it
 // triggers while a reader holds a sample, like Cyclone's) and a GuardCondition for wake().
+// share_in_process: the DomainParticipant is the one every other sharing FastParticipant of
+// this process on the same domain and identity uses (a process group's members).
 class FastParticipant final : public Participant {
  public:
-  FastParticipant(int domain_id, const std::optional<SecurityIdentity>& security);
+  FastParticipant(int domain_id, const std::optional<SecurityIdentity>& security, bool share_in_process = false);
   ~FastParticipant() override;
   std::unique_ptr<SampleWriter> create_writer(const std::string& topic, const TopicType& type) override;
   std::unique_ptr<SampleReader> create_reader(const std::string& topic, const TopicType& type) override;

@@ -24,6 +24,15 @@ std::unique_ptr<Participant> create_participant(const std::string& vendor, int d
 std::unique_ptr<Participant> create_participant(const std::string& vendor, int domain_id,
                                                 const std::optional<SecurityIdentity>& security);
 
+// A participant for a member of a process group (docs/scenes.md), secured as
+// create_participant(vendor, domain_id). On Fast DDS every such participant of the process
+// on the same domain uses one DomainParticipant: one set of threads, ports and discovery
+// for the process instead of one per member (docs/performance.md); each member keeps its
+// own endpoints and its own wait()/wake(). Cyclone DDS already runs all participants of a
+// process on one domain instance (one set of threads and sockets), so there, and in
+// process, it is create_participant().
+std::unique_ptr<Participant> create_group_member_participant(const std::string& vendor, int domain_id);
+
 // Removes what killed processes of any backend left on this host (Fast DDS: its
 // shared-memory transport's segments). Leaves live processes' resources alone, so it is
 // safe while other runs go on.
