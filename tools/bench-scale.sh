@@ -17,6 +17,8 @@
 #     --out DIR       CSV, PNG and the raw runs (default bench-scale-<date>)
 #     --groups G      G process groups (docs/scenes.md), participant i of the scene in group
 #                     i mod G, instead of a process per participant (one host only)
+#     --processes P   the scene's `processes:` (per_core or a number of groups per vendor;
+#                     docs/scenes.md): the launcher packs neighbours into process groups
 #     --variant NAME=BUILD[:HOME]   repeatable: compare builds (before/after) in the same
 #                     rounds; HOME is the project folder whose config/dds the build uses
 #                     (MECHSIM_HOME). Without it: one variant, the --build folder.
@@ -28,13 +30,13 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 family=tools/scale-scene.sh ks="1 2 4 8 16" runs=3 end="4 s" build=build
 layouts="cyclone fastdds mixed" hosts="1 2 4" out="bench-scale-$(date +%Y%m%d-%H%M%S)"
-variants=() groups=0 hosts_set=0
+variants=() groups=0 hosts_set=0 processes=
 [ "$(id -u)" -eq 0 ] || hosts="1"
 while [ $# -gt 0 ]; do
   case "$1" in
     --family) family=$2 ;; --ks) ks=$2 ;; --runs) runs=$2 ;; --end) end=$2 ;; --build) build=$2 ;;
-    --layouts) layouts=$2 ;; --hosts) hosts=$2 hosts_set=1 ;; --out) out=$2 ;; --variant) variants+=("$2") ;; --groups) groups=$2 ;;
-    -h|--help) sed -n '2,26p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    --layouts) layouts=$2 ;; --hosts) hosts=$2 hosts_set=1 ;; --out) out=$2 ;; --variant) variants+=("$2") ;; --groups) groups=$2 ;; --processes) processes=$2 ;;
+    -h|--help) sed -n '2,28p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "bench-scale: unknown option '$1' (see --help)" >&2; exit 2 ;;
   esac
   shift 2
@@ -134,6 +136,7 @@ for r in $(seq 1 "$runs"); do
           mapfile -t extra < <(group_args "$scene" "$groups")
           cmd+=("${extra[@]}")
         fi
+        [ -z "$processes" ] || cmd+=(--set "processes=$processes")
         if [ "$h" -gt 1 ]; then
           mapfile -t extra < <(host_args "$scene" "$h")
           cmd=(tools/netns-hosts.sh exec 1 "${cmd[@]}" "${extra[@]}")

@@ -89,6 +89,23 @@ TEST_F(Placement, AMixedVendorGroupNextToANodeProcessIsByteIdentical) {
   expect_identical_node_outputs(run_folder("apart"), run_folder("grouped"), apart, "one process per node and the 'drive' group");
 }
 
+// `processes: N` (docs/scenes.md): the launcher packs the participants into N groups per
+// vendor; with the mixed layout (cvt and follower on Fast DDS, cam on Cyclone) and N = 1 the
+// two Fast DDS members share one DomainParticipant in one process beside the Cyclone one.
+TEST_F(Placement, PackedProcessesPerVendorAreByteIdentical) {
+  const json apart = launch("press_line.yaml", "per-participant", {"--dds", "mixed"});
+  const json packed = launch("press_line.yaml", "packed", {"--dds", "mixed", "--set", "processes=1"});
+  ASSERT_FALSE(HasFailure());
+  const auto log_of = [&](const char* node) { return fs::path(packed["nodes"][node]["log"].get<std::string>()).filename(); };
+  EXPECT_EQ(packed["nodes"]["cvt"]["vendor"], "fastdds");
+  EXPECT_EQ(log_of("cvt"), "process-auto_fastdds_1.log");
+  EXPECT_EQ(log_of("follower"), "process-auto_fastdds_1.log");
+  EXPECT_EQ(log_of("cam"), "process-auto_cyclone_1.log");
+  EXPECT_EQ(apart["steps"], packed["steps"]);
+  expect_identical_node_outputs(run_folder("per-participant"), run_folder("packed"), apart,
+                                "a process per participant and processes: 1 (mixed vendors)");
+}
+
 // A node of a group that fails ends the run like a node process that fails: the reason is
 // the failing node's, and no process is left (the fixture checks).
 TEST_F(Placement, ADivergingNodeInAGroupEndsTheRunCleanly) {

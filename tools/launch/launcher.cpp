@@ -30,6 +30,7 @@
 #include "run_summary.h"
 #include "agent_host.h"
 #include "process_host.h"
+#include "process_packing.h"
 #include "mechsim/cosim/supervisor.h"
 #include "json_io.h"
 #include "provenance.h"
@@ -431,6 +432,10 @@ static void set_on_loaded_scene(config::Scene& scene, const std::string& overrid
   scene.root.set_override(key, value);
   if (key == "dds.vendor") {
     scene.vendor = value;
+  } else if (key.starts_with("participants.") && key.ends_with(".process")) {
+    const std::string name = key.substr(13, key.size() - 13 - 8);
+    for (auto& p : scene.participants)
+      if (p.name == name) p.process = value;
   } else if (key == "faults.redundant_samples" && value == "true") {
     scene.faults.redundant_samples = config::RedundantSamples::always;
   } else {
@@ -457,6 +462,8 @@ int launch(const LaunchOptions& options) {
       for (const auto& p : scene.participants) names.push_back(p.name);
       for (const auto& o : dds_layout_overrides(names, options.dds_layout)) set_on_loaded_scene(scene, o);
     }
+    // `processes: per_core | N`: this host's participants packed into process groups.
+    for (const auto& o : process_packing_overrides(scene, usable_cores())) set_on_loaded_scene(scene, o);
     hosts = plan_hosts(scene);
     // Across a network packets get lost: every sample goes twice (docs/faults.md).
     if (hosts.multi_host && scene.faults.redundant_samples == config::RedundantSamples::automatic)

@@ -188,10 +188,34 @@ std::optional<RecordSpec> parse_record(const ConfigNode& r) {
   return spec;
 }
 
+ProcessLayout parse_process_layout(const ConfigNode& node) {
+  ProcessLayout layout;
+  layout.key_path = node.path();
+  const auto expected = [&] {
+    node.fail("expected per_participant, per_core or a number of process groups per DDS vendor (1..64)");
+  };
+  if (!node.is_scalar()) expected();
+  const std::string text = node.as_string();
+  if (text == "per_participant") return layout;
+  if (text == "per_core") {
+    layout.kind = ProcessLayout::Kind::per_core;
+    return layout;
+  }
+  if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos || text.size() > 2) expected();
+  layout.count = std::stoi(text);
+  if (layout.count < 1 || layout.count > 64) expected();
+  layout.kind = ProcessLayout::Kind::count;
+  return layout;
+}
+
 // The process keys of a `realtime:` map over `base` (the scene's, for a participant).
 // Participants sharing a process (`process: <group>`): its threads share what belongs to a
 // process, so the members must agree on it.
 void check_process_groups(const Scene& scene, const ConfigNode& participants) {
+  if (scene.processes.packs() && !scene.security_dir.empty())
+    scene.root.child("processes").fail("packs participants into process groups, which are not available with dds.security: "
+                                       "each participant's identity is set in its own process's environment "
+                                       "(docs/security.md); use processes: per_participant");
   std::map<std::string, const ParticipantSpec*> first;  // group -> its first member
   for (const auto& p : scene.participants) {
     if (p.process.empty()) continue;
@@ -254,7 +278,7 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   const ConfigNode& root = scene.root;
   if (!root.is_map()) root.fail("expected a scene: a map with keys scene, time, participants, ...");
   root.allow_only({"scene", "description", "time", "mode", "rtf", "realtime", "dds", "hosts", "faults", "hang_timeout",
-                   "participants", "connections", "compare", "report", "record", "design"});
+                   "processes", "participants", "connections", "compare", "report", "record", "design"});
 
   scene.name = root.string("scene");
   if (!valid_name(scene.name)) root.child("scene").fail("expected a name of letters, digits and '_'");
@@ -278,6 +302,7 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
     scene_process_realtime = parse_process_realtime(*rt, scene_process_realtime);
   }
   if (root.has("hang_timeout")) scene.hang_timeout = root.positive_quantity("hang_timeout", dim::time);
+  if (root.has("processes")) scene.processes = parse_process_layout(root.child("processes"));
   if (auto dds = root.optional_child("dds")) {
     dds->allow_only({"vendor", "domain", "security", "protection"});
     if (dds->has("vendor")) scene.vendor = dds->choice("vendor", {"cyclone", "fastdds"});

@@ -218,6 +218,20 @@ struct RecordSpec {
   bool records(const std::string& topic) const { return topic_selected(topics, regex, topic); }
 };
 
+// `processes:` — how the launcher lays the participants of its own host out on processes
+// (docs/scenes.md#processes-per-participant-or-per-core). per_participant (default): a process
+// each, unless `process:` groups them; per_core: the launcher packs the participants without
+// `process:`, `host:` or a `realtime:` of their own into as many process groups per DDS
+// vendor as the host has cores (count: that many groups), neighbours in scene order
+// together. `processes_key_path` is "" when the scene does not set it.
+struct ProcessLayout {
+  enum class Kind { per_participant, per_core, count };
+  Kind kind = Kind::per_participant;
+  int count = 0;  // Kind::count: process groups per vendor
+  std::string key_path;
+  bool packs() const { return kind != Kind::per_participant; }
+};
+
 struct Scene {
   std::string file;         // path it was loaded from
   std::string name;
@@ -235,6 +249,7 @@ struct Scene {
   // (signed, readable on the wire); authentication and access control either way.
   std::string security_protection = "encrypt";
   double hang_timeout = 5.0;       // s without a status from a node => hung
+  ProcessLayout processes;
   std::vector<HostSpec> hosts;     // empty: a single-host run
   std::vector<ParticipantSpec> participants;
   std::vector<ConnectionSpec> connections;

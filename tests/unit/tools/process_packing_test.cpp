@@ -1,0 +1,65 @@
+// `processes: per_core | N` (tools/launch/process_packing.h, docs/scenes.md): which
+// participants the launcher packs into which process group, on the shipped four-station line
+// shaft (cvt, cam_1, follower_1, ..., cam_4, follower_4).
+#include <gtest/gtest.h>
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "mechsim/config/scene.h"
+#include "process_packing.h"
+
+namespace mechsim::launch {
+namespace {
+
+const std::string kLineShaft = MECHSIM_SOURCE_DIR "/config/scenes/line_shaft_4.yaml";
+
+// participant -> group, from the overrides.
+std::map<std::string, std::string> groups(const std::vector<std::string>& overrides) {
+  std::map<std::string, std::string> out;
+  for (const auto& o : overrides) {
+    const std::string key = o.substr(0, o.find('='));
+    EXPECT_EQ(key.substr(0, 13), "participants.") << o;
+    EXPECT_EQ(key.substr(key.size() - 8), ".process") << o;
+    out[key.substr(13, key.size() - 21)] = o.substr(o.find('=') + 1);
+  }
+  return out;
+}
+
+TEST(ProcessPacking, PerParticipantPacksNothing) {
+  EXPECT_TRUE(process_packing_overrides(config::load_scene(kLineShaft), 2).empty());
+}
+
+TEST(ProcessPacking, PerCoreKeepsNeighboursTogetherInOneGroupPerCore) {
+  const auto g = groups(process_packing_overrides(config::load_scene(kLineShaft, {"processes=per_core"}), 2));
+  ASSERT_EQ(g.size(), 9u);
+  // Nine participants on two cores: the first five, then the last four, in scene order.
+  for (const char* p : {"cvt", "cam_1", "follower_1", "cam_2", "follower_2"}) EXPECT_EQ(g.at(p), "auto_cyclone_1") << p;
+  for (const char* p : {"cam_3", "follower_3", "cam_4", "follower_4"}) EXPECT_EQ(g.at(p), "auto_cyclone_2") << p;
+}
+
+TEST(ProcessPacking, EachVendorGetsItsOwnGroupsAndNeverMoreGroupsThanMembers) {
+  const auto g = groups(process_packing_overrides(
+      config::load_scene(kLineShaft, {"processes=4", "participants.cam_2.dds=fastdds", "participants.cam_3.dds=fastdds"}), 2));
+  EXPECT_EQ(g.at("cam_2"), "auto_fastdds_1");
+  EXPECT_EQ(g.at("cam_3"), "auto_fastdds_2");
+  std::map<std::string, int> members;
+  for (const auto& [p, group] : g) ++members[group];
+  EXPECT_EQ(members.size(), 6u);  // four Cyclone groups of seven participants, two Fast DDS ones of one
+  EXPECT_EQ(members["auto_cyclone_1"] + members["auto_cyclone_2"] + members["auto_cyclone_3"] + members["auto_cyclone_4"], 7);
+}
+
+TEST(ProcessPacking, ParticipantsThatChoseTheirProcessOrCannotJoinAGroupStayApart) {
+  const auto g = groups(process_packing_overrides(
+      config::load_scene(kLineShaft, {"processes=per_core", "participants.cvt.process=drive", "participants.cam_4.realtime.priority=10",
+                                      "participants.follower_4.restart=on_failure"}),
+      1));
+  EXPECT_FALSE(g.contains("cvt"));     // its own group, as written
+  EXPECT_FALSE(g.contains("cam_4"));   // a realtime: of its own is a process's setting
+  EXPECT_EQ(g.at("follower_4"), "auto_cyclone_2");  // restarts alone: not with members that do not restart
+  for (const char* p : {"cam_1", "follower_1", "cam_2", "follower_2", "cam_3", "follower_3"}) EXPECT_EQ(g.at(p), "auto_cyclone_1") << p;
+}
+
+}  // namespace
+}  // namespace mechsim::launch

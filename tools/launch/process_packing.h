@@ -1,0 +1,27 @@
+// `processes: per_core | N` (docs/scenes.md#processes-per-participant-or-per-core): which
+// participants of the launcher's host the launcher packs into process groups, and into which.
+// Many participants on few cores cost more CPU per participant-step when each is a process
+// of its own (a context switch among more processes costs more, docs/performance.md); a few
+// process groups keep that cost flat.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "mechsim/config/scene.h"
+
+namespace mechsim::launch {
+
+// The cores this process may run on (its CPU affinity), at least 1.
+int usable_cores();
+
+// The `participants.<p>.process=<group>` settings that lay the scene out as its `processes:`
+// asks, for a host with `cores` cores; none for per_participant. Packed are the participants
+// without `process:`, `host:` or a `realtime:` of their own; each DDS vendor gets its own
+// groups (`auto_<vendor>_<i>`, i from 1), the participants of one restart policy together,
+// and neighbours in scene order share a group (scenes list partners side by side: a cam and
+// its follower), so most samples stay inside a process. Groups per vendor: `cores`
+// (per_core) or the scene's count, never more than the participants packed.
+std::vector<std::string> process_packing_overrides(const config::Scene& scene, int cores);
+
+}  // namespace mechsim::launch
