@@ -122,7 +122,12 @@ std::string line_shaft_scene(const LineShaftOptions& o) {
   append(out, "scene: line_shaft_%d\n", K);
   append(out, "description: Press line with %d cam station%s on one line shaft (elastic segments %.3g N m/rad)\n", K,
          K > 1 ? "s" : "", o.segment_stiffness);
-  out += "time: {start: 0 s, end: 2 s, step: 1 ms}\nmode: lockstep\n\nparticipants:\n";
+  out += "time: {start: 0 s, end: 2 s, step: 1 ms}\nmode: lockstep\n";
+  // Many participants on few cores cost less CPU per step in a few processes
+  // (docs/performance.md#processes-per-core).
+  out += "# Many participants on few cores: the launcher packs neighbouring stations into a process\n"
+         "# group per core (docs/scenes.md); --set processes=per_participant gives each its own.\n"
+         "processes: per_core\n\nparticipants:\n";
   out += kPressLine;
   for (int k = 2; k <= K; ++k) append_station(out, k, o);
 
