@@ -1,6 +1,6 @@
 // `processes: per_core | N` (tools/launch/process_packing.h, docs/scenes.md): which
 // participants the launcher packs into which process group, on the shipped four-station line
-// shaft (cvt, cam_1, follower_1, ..., cam_4, follower_4).
+// shaft (cvt, cam_1, follower_1, ..., cam_4, follower_4; it says processes: per_core).
 #include <gtest/gtest.h>
 
 #include <map>
@@ -28,7 +28,7 @@ std::map<std::string, std::string> groups(const std::vector<std::string>& overri
 }
 
 TEST(ProcessPacking, PerParticipantPacksNothing) {
-  EXPECT_TRUE(process_packing_overrides(config::load_scene(kLineShaft), 2).empty());
+  EXPECT_TRUE(process_packing_overrides(config::load_scene(kLineShaft, {"processes=per_participant"}), 2).empty());
 }
 
 TEST(ProcessPacking, PerCoreKeepsNeighboursTogetherInOneGroupPerCore) {
