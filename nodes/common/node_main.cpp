@@ -50,6 +50,7 @@ void apply_realtime(const config::Scene& scene, const config::ParticipantSpec& s
 
 void apply_testing_seams(const config::ParticipantSpec& spec, cosim::NodeRunOptions& options) {
   options.lose_first_writes_after_resume = spec.lose_writes_after_resume;
+  options.lose_write_of_step = spec.lose_write_of_step;
   options.checkpoint_pause_step = spec.checkpoint_pause_step;
   options.checkpoint_pause_s = spec.checkpoint_pause;
 }

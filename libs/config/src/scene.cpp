@@ -383,7 +383,8 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
     ParticipantSpec spec;
     spec.name = name;
     if (auto t = p.optional_child("testing")) {
-      t->allow_only({"lose_writes_after_resume", "checkpoint_pause_step", "checkpoint_pause"});
+      t->allow_only({"lose_writes_after_resume", "lose_write_of_step", "checkpoint_pause_step", "checkpoint_pause"});
+      if (t->has("lose_write_of_step")) spec.lose_write_of_step = static_cast<std::uint64_t>(t->integer("lose_write_of_step"));
       spec.lose_writes_after_resume = t->has("lose_writes_after_resume") && t->boolean("lose_writes_after_resume");
       if (t->has("checkpoint_pause_step")) spec.checkpoint_pause_step = static_cast<std::uint64_t>(t->integer("checkpoint_pause_step"));
       spec.checkpoint_pause = t->non_negative_quantity_or("checkpoint_pause", dim::time, 0.0);

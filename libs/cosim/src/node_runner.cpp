@@ -108,7 +108,7 @@ NodeLoop::NodeLoop(ScenePlan& plan, const std::string& name, transport::Particip
       io_(plan, name, participant, scene_.faults.redundant()),
       stepper_(node_, plan.grid(), plan.nodes().size(), io_.self()),
       resumed_(checkpoint_to_resume(options, name)),
-      rollback_(io_, options.lose_first_writes_after_resume),
+      rollback_(io_, options.lose_first_writes_after_resume, options.lose_write_of_step),
       gate_(plan, node_, io_, stepper_, rollback_, options.run_id, options.domain, resumed_.has_value()),
       partition_(plan, node_, config::fault_timings(scene_).partition_grace),
       guard_(output_names(node_)),

@@ -10,13 +10,12 @@ bool RollbackSession::within_after_resume(double seconds) const {
 }
 
 void RollbackSession::keep(bool prediction, const transport::SampleHeader& h, const std::vector<double>& v) {
-  if (!within_after_resume(kForeignWriterGrace)) return;  // no clock read in a run without rollback
-  if (sent_.size() == kSentKept) sent_.erase(sent_.begin());
-  sent_.push_back({prediction, h, v});
+  resend_.keep(prediction, h, v, within_after_resume(kForeignWriterGrace) ? kSentKept : StallResend::kKeptSteady);
 }
 
 void RollbackSession::write_own(const transport::SampleHeader& h, const std::vector<double>& v) {
-  io_.write_own(h, v);
+  if (lose_write_of_step_ == h.step) lose_write_of_step_.reset();  // the test seam: this write is lost
+  else io_.write_own(h, v);
   keep(false, h, v);
 }
 
@@ -27,25 +26,15 @@ void RollbackSession::write_prediction(const transport::SampleHeader& h, const s
 
 void RollbackSession::go_on(const transport::SampleHeader& h, const std::vector<double>& v) {
   resumed_at_ = Clock::now();
-  sent_.clear();
-  last_step_taken_ = Clock::now();
+  resend_.clear();
+  resend_.step_taken();
   lose_next_prediction_ = lose_first_writes_ && io_.has_cut();
   if (!lose_first_writes_) io_.write_own(h, v);
   keep(false, h, v);
 }
 
 void RollbackSession::resend_if_stalled(std::uint64_t step) {
-  if (sent_.empty() || !within_after_resume(kForeignWriterGrace)) return;
-  const auto now = Clock::now();
-  if (now - last_step_taken_ < kResendAfterStall || now - last_resend_ < kResendAfterStall) return;
-  if (last_resend_ < last_step_taken_)  // once per stall in the log
-    std::printf("rollback: no step for %.2f s at step %llu: %zu sample(s) sent since the rollback sent again\n",
-                std::chrono::duration<double>(now - last_step_taken_).count(), static_cast<unsigned long long>(step), sent_.size());
-  last_resend_ = now;
-  for (const SentSample& s : sent_) {
-    if (s.prediction) io_.write_prediction(s.header, s.values);
-    else io_.write_own(s.header, s.values);
-  }
+  resend_.resend_if_stalled(step, within_after_resume(kForeignWriterGrace) ? "rollback" : "lock step");
 }
 
 }  // namespace mechsim::cosim

@@ -1,13 +1,12 @@
 // What a node does differently after a rollback's resume (docs/faults.md, 'Restart with
-// rollback'): the leniency windows counted from the resume, and the resend window.
+// rollback'): the leniency windows counted from the resume, and a wider resend.
 //
 // A restarted node's writers and readers are new to its partners, and DDS discovery
 // completes on each side on its own: a sample written before the other side matched a
 // writer never arrives (VOLATILE), and lock step would wait for it for good (seen in CI).
-// So for kForeignWriterGrace after the resume a node keeps what it wrote since the
-// rollback and writes it again whenever it has waited kResendAfterStall without taking a
-// step; receivers take the copies as repeats (SampleGate). A lost sample stalls its
-// receiver, and in a loop of partners that stall reaches the sender.
+// Every node writes its newest samples again when it stalls (StallResend); for
+// kForeignWriterGrace after the resume it keeps everything it wrote since the rollback for
+// that (up to kSentKept), and receivers take the copies as repeats (SampleGate).
 #pragma once
 
 #include <chrono>
@@ -16,6 +15,7 @@
 #include <vector>
 
 #include "node_endpoints.h"
+#include "stall_resend.h"
 
 namespace mechsim::cosim {
 
@@ -31,8 +31,9 @@ class RollbackSession {
   // beside its new one (it took more than 4 s under load once).
   static constexpr double kLingeringAfterResume = 10.0;  // s
 
-  // lose_first_writes: the test seam of NodeRunOptions::lose_first_writes_after_resume.
-  RollbackSession(NodeEndpoints& io, bool lose_first_writes) : io_(io), lose_first_writes_(lose_first_writes) {}
+  // lose_first_writes, lose_write_of_step: the test seams of NodeRunOptions.
+  RollbackSession(NodeEndpoints& io, bool lose_first_writes, std::optional<std::uint64_t> lose_write_of_step = std::nullopt)
+      : io_(io), lose_first_writes_(lose_first_writes), lose_write_of_step_(lose_write_of_step), resend_(io) {}
 
   // Within `seconds` of the last resume (false when never rolled back).
   bool within_after_resume(double seconds) const;
@@ -40,34 +41,29 @@ class RollbackSession {
   const std::optional<std::uint64_t>& rollback_step() const { return rollback_step_; }
   void restored(std::uint64_t step) { rollback_step_ = step; }
 
-  // The node's writes, kept for sending again while the window lasts.
+  // The node's writes, kept for sending again when it stalls (StallResend).
   void write_own(const transport::SampleHeader& h, const std::vector<double>& v);
   void write_prediction(const transport::SampleHeader& h, const std::vector<double>& v);
-  void step_taken() { last_step_taken_ = Clock::now(); }
+  void step_taken() { resend_.step_taken(); }
   // The run goes on from the restored step: its sample once more (the partners rolled back
   // as well and need it), and the window opens.
   void go_on(const transport::SampleHeader& h, const std::vector<double>& v);
-  // Sends again what was written since the rollback when no step was taken for a while.
+  // Sends the newest writes again (after a resume: what was written since the rollback)
+  // when no step was taken for a while.
   void resend_if_stalled(std::uint64_t step);
 
  private:
   using Clock = std::chrono::steady_clock;
-  struct SentSample {
-    bool prediction;  // the cut topic, else the node's own topic
-    transport::SampleHeader header;
-    std::vector<double> values;
-  };
-  static constexpr std::size_t kSentKept = 64;  // the newest; partners in lock step are a step or two apart
-  static constexpr auto kResendAfterStall = std::chrono::milliseconds(100);
+  static constexpr std::size_t kSentKept = 64;  // after a resume: since the rollback, the newest
   void keep(bool prediction, const transport::SampleHeader& h, const std::vector<double>& v);
 
   NodeEndpoints& io_;
   const bool lose_first_writes_;
+  std::optional<std::uint64_t> lose_write_of_step_;
   bool lose_next_prediction_ = false;
   std::optional<Clock::time_point> resumed_at_;
   std::optional<std::uint64_t> rollback_step_;
-  std::vector<SentSample> sent_;
-  Clock::time_point last_step_taken_ = Clock::now(), last_resend_{};
+  StallResend resend_;
 };
 
 }  // namespace mechsim::cosim

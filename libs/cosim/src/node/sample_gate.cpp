@@ -104,11 +104,20 @@ bool SampleGate::drain_input(std::size_t e) {
     took = true;
     if (h.run_id != run_id_) continue;
     if (!in_sequence(e, h.step)) {
+      const bool one_writer = reader.matched_writers() == 1;
+      // A step taken before, again, from the one writer the plan expects: a partner that
+      // stalled writes its newest samples once more (StallResend). Dropped; where the step
+      // is still held its values must be the same.
+      if (h.step < next_step_[e] && one_writer) {
+        if (h.step + 2 >= stepper_.step() && !stepper_.channel(e).add(h.step, received_))
+          foreign(&reader, edge.topic, edge.from, "two different samples for step " + std::to_string(h.step));
+        continue;
+      }
       // A step ahead of the one due, from the one writer the plan expects: the DDS layer
       // skipped a sample of its reliable stream (seen under 5 % loss between Fast DDS and
       // Cyclone at the start of a run); the step due comes from the redundant copy or the
       // run stalls and ends at the partition grace. Anything else out of order is foreign.
-      if (!(h.step > next_step_[e] && reader.matched_writers() == 1))
+      if (!(h.step > next_step_[e] && one_writer))
         foreign(&reader, edge.topic, edge.from, "step " + std::to_string(h.step) + " arrived where step " + std::to_string(next_step_[e]) + " was due");
       std::printf("warning: topic '%s': step %llu arrived where step %llu was due (one writer matched): the reliable stream skipped; taking it\n",
                   edge.topic.c_str(), static_cast<unsigned long long>(h.step), static_cast<unsigned long long>(next_step_[e]));

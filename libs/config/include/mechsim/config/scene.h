@@ -98,8 +98,11 @@ struct ParticipantSpec {
   // `testing:` seams for the test suite, never for a real run (tests/integration/restart_test.cpp):
   // lose_writes_after_resume: true, the node leaves out its first writes after a resume, as
   // a partner that had not yet matched its writers would miss them; checkpoint_pause_step: K
-  // with checkpoint_pause: 3 s, it stops that long halfway through writing its checkpoint of K.
+  // with checkpoint_pause: 3 s, it stops that long halfway through writing its checkpoint of K;
+  // lose_write_of_step: K, it leaves out its write of step K, as a sample lost on the wire
+  // and never repaired (tests/integration/lost_sample_test.cpp).
   bool lose_writes_after_resume = false;
+  std::optional<std::uint64_t> lose_write_of_step;
   std::optional<std::uint64_t> checkpoint_pause_step;
   double checkpoint_pause = 0.0;  // s
   ConfigNode params;   // type-specific, validated by the node type

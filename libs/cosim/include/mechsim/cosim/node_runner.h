@@ -30,6 +30,9 @@ struct NodeRunOptions {
   // out its first writes after a resume (the restored step's sample and the first
   // prediction), as a partner that had not yet matched its writers would miss them.
   bool lose_first_writes_after_resume = false;
+  // Test seam (lost_sample_test; `testing.lose_write_of_step`): the node leaves out its
+  // write of this step (both copies), as a sample lost and never repaired by DDS.
+  std::optional<std::uint64_t> lose_write_of_step;
   // Test seam (restart_test; `testing.checkpoint_pause_step`, `testing.checkpoint_pause`): the
   // node stops this long halfway through writing its checkpoint of this step.
   std::optional<std::uint64_t> checkpoint_pause_step;
