@@ -36,6 +36,7 @@ namespace mechsim::agent {
 namespace fs = std::filesystem;
 using hostrun::AgentKind;
 using hostrun::kAllAgents;
+using hostrun::kGroupType;
 using hostrun::kHelloPeriodS;
 using Clock = std::chrono::steady_clock;
 using nlohmann::json;
@@ -150,14 +151,28 @@ void Agent::start_node(const transport::AgentMessage& m) {
   if (request.is_discarded() || !request.is_object()) return refuse("the start request is not a JSON object");
   const std::string type = request.value("type", "");
   // Only the node executables of the catalog, from this build: never a path the request names.
-  // "fmu": the node of a participant of type fmu, whose node type each plan makes (docs/fmi.md).
-  if (cosim::find_node_type(type) == nullptr && type != "fmu")
+  // "fmu": the node of a participant of type fmu, whose node type each plan makes (docs/fmi.md);
+  // "node_group": a process group, its participants named in "members" (docs/scenes.md).
+  if (cosim::find_node_type(type) == nullptr && type != "fmu" && type != kGroupType)
     return refuse("'" + type + "' is not a mechsim node type");
+  std::vector<std::string> members{m.node};
+  if (type == kGroupType) {
+    if (!request.contains("members") || !request["members"].is_array() || request["members"].empty())
+      return refuse("a node_group request names its participants in \"members\" (a non-empty list)");
+    members.clear();
+    for (const auto& member : request["members"]) {
+      if (!member.is_string()) return refuse("\"members\" must be a list of participant names");
+      members.push_back(member.get<std::string>());
+    }
+  }
   const std::string folder_name = request.value("run_folder", "");
   if (folder_name.empty() || folder_name.find('/') != std::string::npos || folder_name[0] == '.')
     return refuse("run_folder must be a plain folder name, got '" + folder_name + "'");
-  if (m.node.empty() || m.node.find('/') != std::string::npos || m.node[0] == '.')
-    return refuse("a participant name must be a plain name");
+  std::vector<std::string> names = members;
+  names.push_back(m.node);
+  for (const std::string& name : names)
+    if (name.empty() || name.find('/') != std::string::npos || name[0] == '.')
+      return refuse("a participant (or process group) name must be a plain name, got '" + name + "'");
   if (request.value("domain", -1) != opt_.domain)
     return refuse("the request is for domain " + std::to_string(request.value("domain", -1)) + ", this agent serves " +
                   std::to_string(opt_.domain));
@@ -181,9 +196,10 @@ void Agent::start_node(const transport::AgentMessage& m) {
     if (network.address.empty() || addresses_.count(network.address) == 0)
       return refuse("the request names address '" + network.address + "', which is not one of this host's");
     const std::vector<std::string> env = hostrun::write_unicast_dds_files((run.folder / "dds").string(), network);
-    std::vector<std::string> args{"--scene", (run.folder / "scene.yaml").string(), "--node", m.node,
-                                  "--run-id", std::to_string(m.run_id), "--domain", std::to_string(opt_.domain),
-                                  "--run-dir", run.folder.string()};
+    std::vector<std::string> args{"--scene", (run.folder / "scene.yaml").string()};
+    for (const std::string& member : members) args.insert(args.end(), {"--node", member});
+    args.insert(args.end(), {"--run-id", std::to_string(m.run_id), "--domain", std::to_string(opt_.domain), "--run-dir",
+                             run.folder.string()});
     // The launcher's control writer: its nodes take commands from nobody else.
     if (const std::string guid = request.value("control_writer", ""); !guid.empty()) {
       if (guid.size() != 33 || guid[24] != ':' ||

@@ -4,7 +4,9 @@
 //
 //   agent    -> hello      every second: its addresses and host name (text, JSON)
 //   launcher -> start      one node: host = the agent's address, node = participant,
-//                          text = {type, scene_yaml, run_folder, domain, address, peers}
+//                          text = {type, scene_yaml, run_folder, domain, address, peers};
+//                          or a process group: node = "process-<group>", type =
+//                          "node_group", members = [participants] (docs/scenes.md)
 //   agent    -> started    node started (the launcher repeats `start` every second until
 //                          this comes: a sample written right after discovery can be lost)
 //   agent    -> refused    node (or "" for the whole request) not started: text = why
@@ -41,6 +43,8 @@ enum class AgentKind : std::int32_t {
 };
 
 inline constexpr const char* kAllAgents = "*";
+// The `type` of a start request for a process group, and the executable it runs.
+inline constexpr const char* kGroupType = "node_group";
 inline constexpr double kHeartbeatPeriodS = 0.5;
 inline constexpr double kDefaultHeartbeatTimeoutS = 5.0;
 inline constexpr double kHelloPeriodS = 1.0;

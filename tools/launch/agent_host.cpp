@@ -1,12 +1,19 @@
 #include "agent_host.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 namespace mechsim::launch {
 
+const RemoteNode& AgentNodeHost::planned(const std::string& node) const {
+  for (const auto& n : planned_)
+    if (std::find(n.members.begin(), n.members.end(), node) != n.members.end()) return n;
+  throw std::logic_error("no agent's process runs node '" + node + "'");
+}
+
 std::vector<std::string> AgentNodeHost::nodes() const {
   std::vector<std::string> out;
-  for (const auto& n : planned_) out.push_back(n.name);
+  for (const auto& n : planned_) out.insert(out.end(), n.members.begin(), n.members.end());
   return out;
 }
 
@@ -16,16 +23,18 @@ void AgentNodeHost::start_all() {
 
 std::vector<cosim::NodeExit> AgentNodeHost::poll() {
   std::vector<cosim::NodeExit> out;
-  for (const hostrun::NodeProcess* p : processes_.poll()) out.push_back({p->name, !p->signalled && p->exit_code == 0, p->signalled});
+  for (const hostrun::NodeProcess* p : processes_.poll())
+    for (const auto& n : planned_)
+      if (n.name == p->name)
+        for (const auto& member : n.members) out.push_back({member, !p->signalled && p->exit_code == 0, p->signalled});
   return out;
 }
 
 std::string AgentNodeHost::placement(const std::string& node) const {
   for (const auto& n : planned_)
-    if (n.name == node) return "on host " + n.host + " (" + n.address + ")";
+    if (std::find(n.members.begin(), n.members.end(), node) != n.members.end()) return "on host " + n.host + " (" + n.address + ")";
   return {};
 }
-
 void AgentNodeHost::request_stop() {
   if (processes_.all_exited()) return;
   agents_.stop_all();

@@ -13,6 +13,7 @@
 #include <random>
 
 #include "agent_client.h"
+#include "agent_protocol.h"
 #include "domain_lock.h"
 #include "domain_readers.h"
 #include "hosts.h"
@@ -145,17 +146,32 @@ void Run::place_nodes() {
   std::vector<LocalProcess> local;
   std::vector<RemoteNode> remote;
   std::map<std::string, std::size_t> group_index;  // group -> its entry in `local`
+  std::map<std::string, std::size_t> remote_group_index;  // group -> its entry in `remote`
   for (const auto& node : plan_.nodes()) {
+    const std::string& group = scene_.find_participant(node.name())->process;
     if (auto at = hosts_.remote.find(node.name()); at != hosts_.remote.end()) {
-      // Its host's agent starts it with the same arguments, in a run folder of its own.
-      const json request{{"type", node.type->name}, {"scene_yaml", scene_text},
-                         {"run_folder", fs::path(run_dir_).filename().string()}, {"domain", domain_},
-                         {"address", at->second}, {"peers", hosts_.peers}, {"lease_s", lease_for(scene_)},
-                         {"partition_grace_s", scene_.faults.partition_grace}, {"control_writer", control_->guid()}};
-      remote.push_back({node.name(), scene_.find_participant(node.name())->host, at->second, request.dump()});
+      // Its host's agent starts it with the same arguments, in a run folder of its own; a
+      // group's members in one process there (all on the same host: config checks).
+      if (!group.empty() && remote_group_index.count(group)) {
+        RemoteNode& r = remote[remote_group_index[group]];
+        r.members.push_back(node.name());
+        json request = json::parse(r.request);
+        request["members"].push_back(node.name());
+        r.request = request.dump();
+        continue;
+      }
+      json request{{"type", group.empty() ? node.type->name : std::string(hostrun::kGroupType)}, {"scene_yaml", scene_text},
+                   {"run_folder", fs::path(run_dir_).filename().string()}, {"domain", domain_},
+                   {"address", at->second}, {"peers", hosts_.peers}, {"lease_s", lease_for(scene_)},
+                   {"partition_grace_s", scene_.faults.partition_grace}, {"control_writer", control_->guid()}};
+      if (!group.empty()) {
+        request["members"] = json::array({node.name()});
+        remote_group_index[group] = remote.size();
+      }
+      remote.push_back({group.empty() ? node.name() : "process-" + group, {node.name()}, scene_.find_participant(node.name())->host,
+                        at->second, request.dump()});
       continue;
     }
-    const std::string& group = scene_.find_participant(node.name())->process;
     if (!group.empty() && group_index.count(group)) {
       // Another thread of the group's process (docs/scenes.md, `process`).
       LocalProcess& p = local[group_index[group]];
@@ -186,7 +202,7 @@ void Run::place_nodes() {
 
 std::string Run::log_of(const std::string& node) const {
   // An agent streams a remote node's log into <node>.log here.
-  if (remote_ && !remote_->placement(node).empty()) return run_dir_ + "/" + node + ".log";
+  if (remote_ && !remote_->placement(node).empty()) return run_dir_ + "/" + remote_->log_name(node);
   return local_->log_of(node);
 }
 

@@ -17,24 +17,35 @@ int usable_cores() {
 std::vector<std::string> process_packing_overrides(const config::Scene& scene, int cores) {
   if (!scene.processes.packs()) return {};
   const config::ConfigNode participants = scene.root.child("participants");
-  // Packed participants by vendor and restart policy, in scene order.
-  std::map<std::pair<std::string, bool>, std::vector<std::string>> packable;
+  // Packed participants by host, vendor and restart policy, in scene order.
+  struct Key {
+    std::string host, vendor;
+    bool restart;
+    auto operator<=>(const Key&) const = default;
+  };
+  std::map<Key, std::vector<std::string>> packable;
+  std::vector<Key> order;  // keys as first met, so group numbers follow the scene
   for (const auto& p : scene.participants) {
-    // Those a group cannot hold (check_process_groups) or that chose their own process.
-    if (!p.process.empty() || !p.host.empty() || participants.child(p.name).has("realtime")) continue;
-    packable[{p.vendor, p.restart}].push_back(p.name);
+    // Those that chose their own process, or whose own realtime: is a process's setting.
+    if (!p.process.empty() || participants.child(p.name).has("realtime")) continue;
+    const Key key{p.host, p.vendor, p.restart};
+    if (!packable.contains(key)) order.push_back(key);
+    packable[key].push_back(p.name);
   }
   const int per_vendor = scene.processes.kind == config::ProcessLayout::Kind::per_core ? cores : scene.processes.count;
-  std::map<std::string, int> groups_of_vendor;  // numbering across restart policies
+  std::map<std::pair<std::string, std::string>, int> groups_so_far;  // (host, vendor) -> groups numbered
   std::vector<std::string> out;
-  for (const auto& [key, names] : packable) {
+  for (const Key& key : order) {
+    const std::vector<std::string>& names = packable[key];
     const int n = static_cast<int>(names.size());
     const int groups = std::clamp(per_vendor, 1, n);
-    const int first = groups_of_vendor[key.first] + 1;
-    groups_of_vendor[key.first] += groups;
+    int& numbered = groups_so_far[{key.host, key.vendor}];
+    const int first = numbered + 1;
+    numbered += groups;
+    const std::string prefix = "auto_" + (key.host.empty() ? "" : key.host + "_") + key.vendor + "_";
     // Contiguous, sizes differing by at most one: member i goes to group i * groups / n.
     for (int i = 0; i < n; ++i)
-      out.push_back("participants." + names[i] + ".process=auto_" + key.first + "_" + std::to_string(first + i * groups / n));
+      out.push_back("participants." + names[i] + ".process=" + prefix + std::to_string(first + i * groups / n));
   }
   return out;
 }

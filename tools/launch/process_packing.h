@@ -16,12 +16,14 @@ namespace mechsim::launch {
 int usable_cores();
 
 // The `participants.<p>.process=<group>` settings that lay the scene out as its `processes:`
-// asks, for a host with `cores` cores; none for per_participant. Packed are the participants
-// without `process:`, `host:` or a `realtime:` of their own; each DDS vendor gets its own
-// groups (`auto_<vendor>_<i>`, i from 1), the participants of one restart policy together,
-// and neighbours in scene order share a group (scenes list partners side by side: a cam and
-// its follower), so most samples stay inside a process. Groups per vendor: `cores`
-// (per_core) or the scene's count, never more than the participants packed.
+// asks, `cores` being the launcher's host's (taken for every host: the launcher cannot see
+// the others'; `processes: N` says it for all); none for per_participant. Packed are the
+// participants without `process:` or a `realtime:` of their own; each host and DDS vendor
+// gets its own groups (`auto_<vendor>_<i>` on the launcher's host, `auto_<host>_<vendor>_<i>`
+// on another, i from 1), the participants of one restart policy together, and neighbours
+// in scene order share a group (scenes list partners side by side: a cam and its follower),
+// so most samples stay inside a process. Groups per host and vendor: `cores` (per_core) or
+// the scene's count, never more than the participants packed.
 std::vector<std::string> process_packing_overrides(const config::Scene& scene, int cores);
 
 }  // namespace mechsim::launch

@@ -220,10 +220,6 @@ void check_process_groups(const Scene& scene, const ConfigNode& participants) {
   for (const auto& p : scene.participants) {
     if (p.process.empty()) continue;
     const ConfigNode key = participants.child(p.name).child("process");
-    // The agents start one node per process.
-    if (!p.host.empty())
-      key.fail("a process group runs on the launcher's host only (participant on host '" + p.host +
-               "'); remove process: or host: (docs/scenes.md)");
     // Each participant's identity reaches it through its process's environment.
     if (!scene.security_dir.empty())
       key.fail("process groups are not available with dds.security: each participant's identity is set in its own "
@@ -233,6 +229,11 @@ void check_process_groups(const Scene& scene, const ConfigNode& participants) {
       key.fail("a participant in a process group takes the scene's realtime: settings: its own realtime: would apply to the "
                "whole process (remove one of them)");
     auto [at, inserted] = first.emplace(p.process, &p);
+    // One process runs on one host.
+    if (!inserted && at->second->host != p.host)
+      key.fail("the participants of process group '" + p.process + "' run in one process, on one host: '" + at->second->name +
+               "' is on " + (at->second->host.empty() ? "the launcher's host" : "host '" + at->second->host + "'") + ", '" + p.name +
+               "' on " + (p.host.empty() ? "the launcher's host" : "host '" + p.host + "'"));
     // A crash takes the whole process: it restarts as a whole, or not at all.
     if (!inserted && at->second->restart != p.restart)
       key.fail("the participants of process group '" + p.process + "' restart together: '" + at->second->name + "' has restart: " +

@@ -247,9 +247,10 @@ TEST(SceneValidation, ProcessGroups) {
   expect_refused(grouped("", "\n    restart: on_failure"), "participants.follower.process", "restart together");
   // Real-time settings are the process's.
   expect_refused(grouped("", "\n    realtime: {priority: 10}"), "participants.follower.process", "whole process");
-  // The agents start one node per process.
+  // One process runs on one host; a group on another host is one process its agent starts.
   expect_refused(grouped("", "\n    host: b", "\ndds: {domain: 5}\nhosts: {b: {address: 10.0.0.2}}"), "participants.follower.process",
-                 "launcher's host only");
+                 "'cam' is on the launcher's host, 'follower' on host 'b'");
+  EXPECT_EQ(refusal(grouped("\n    host: b", "\n    host: b", "\ndds: {domain: 5}\nhosts: {b: {address: 10.0.0.2}}"), nullptr), "");
 }
 
 // `processes:` (docs/scenes.md): per_participant, per_core or a number of groups per vendor.

@@ -61,5 +61,14 @@ TEST(ProcessPacking, ParticipantsThatChoseTheirProcessOrCannotJoinAGroupStayApar
   for (const char* p : {"cam_1", "follower_1", "cam_2", "follower_2", "cam_3", "follower_3"}) EXPECT_EQ(g.at(p), "auto_cyclone_1") << p;
 }
 
+TEST(ProcessPacking, EachHostGetsItsOwnGroups) {
+  const auto g = groups(process_packing_overrides(
+      config::load_scene(kLineShaft, {"processes=1", "dds.domain=5", "hosts.b.address=10.0.0.2", "participants.cam_3.host=b",
+                                      "participants.follower_3.host=b", "participants.cam_4.host=b"}),
+      2));
+  for (const char* p : {"cam_3", "follower_3", "cam_4"}) EXPECT_EQ(g.at(p), "auto_b_cyclone_1") << p;
+  for (const char* p : {"cvt", "cam_1", "follower_1", "cam_2", "follower_2", "follower_4"}) EXPECT_EQ(g.at(p), "auto_cyclone_1") << p;
+}
+
 }  // namespace
 }  // namespace mechsim::launch
