@@ -55,8 +55,6 @@ void on_interrupt(int sig) { g_interrupt.store(sig); }
 // the participants forget each other (what was written meanwhile would be lost for good).
 double lease_for(const config::Scene& scene) { return config::fault_timings(scene).dds_lease; }
 
-// The executable of a process group's process (nodes/node_group): its nodes as threads.
-constexpr const char* kGroupExecutable = "node_group";
 
 class Run {
  public:
@@ -184,7 +182,7 @@ void Run::place_nodes() {
     LocalProcess p;
     p.name = group.empty() ? node.name() : group;
     p.members = {node.name()};
-    p.executable = node_executable(group.empty() ? node.type->name : kGroupExecutable);
+    p.executable = node_executable(group.empty() ? node.type->name : hostrun::kGroupType);
     p.args = {"--scene", run_dir_ + "/scene.yaml", "--node", node.name(), "--run-id", std::to_string(run_id_),
               "--domain", std::to_string(domain_), "--run-dir", run_dir_};
     // The node takes commands from this launcher's control writer only (docs/faults.md).
