@@ -21,6 +21,7 @@ struct RemoteNode {
   std::vector<std::string> members;  // the participants it runs
   std::string host;     // the scene's name of the host
   std::string address;  // its agent's address
+  std::string type;     // the node type, or hostrun::kGroupType for a group
   std::string request;  // the start text (JSON, agent_protocol.h)
 };
 

@@ -55,7 +55,6 @@ void on_interrupt(int sig) { g_interrupt.store(sig); }
 // the participants forget each other (what was written meanwhile would be lost for good).
 double lease_for(const config::Scene& scene) { return config::fault_timings(scene).dds_lease; }
 
-
 class Run {
  public:
   Run(const LaunchOptions& o, config::Scene& scene, cosim::ScenePlan& plan, HostLayout hosts)
@@ -148,26 +147,15 @@ void Run::place_nodes() {
   for (const auto& node : plan_.nodes()) {
     const std::string& group = scene_.find_participant(node.name())->process;
     if (auto at = hosts_.remote.find(node.name()); at != hosts_.remote.end()) {
-      // Its host's agent starts it with the same arguments, in a run folder of its own; a
-      // group's members in one process there (all on the same host: config checks).
+      // Its host's agent starts it (the request: below); a group's members in one process
+      // there (all on the same host: config checks).
       if (!group.empty() && remote_group_index.count(group)) {
-        RemoteNode& r = remote[remote_group_index[group]];
-        r.members.push_back(node.name());
-        json request = json::parse(r.request);
-        request["members"].push_back(node.name());
-        r.request = request.dump();
+        remote[remote_group_index[group]].members.push_back(node.name());
         continue;
       }
-      json request{{"type", group.empty() ? node.type->name : std::string(hostrun::kGroupType)}, {"scene_yaml", scene_text},
-                   {"run_folder", fs::path(run_dir_).filename().string()}, {"domain", domain_},
-                   {"address", at->second}, {"peers", hosts_.peers}, {"lease_s", lease_for(scene_)},
-                   {"partition_grace_s", scene_.faults.partition_grace}, {"control_writer", control_->guid()}};
-      if (!group.empty()) {
-        request["members"] = json::array({node.name()});
-        remote_group_index[group] = remote.size();
-      }
+      if (!group.empty()) remote_group_index[group] = remote.size();
       remote.push_back({group.empty() ? node.name() : "process-" + group, {node.name()}, scene_.find_participant(node.name())->host,
-                        at->second, request.dump()});
+                        at->second, group.empty() ? node.type->name : std::string(hostrun::kGroupType), ""});
       continue;
     }
     if (!group.empty() && group_index.count(group)) {
@@ -193,6 +181,15 @@ void Run::place_nodes() {
     p.environment = node_security_environment(scene_, node.name());
     if (!group.empty()) group_index[group] = local.size();
     local.push_back(std::move(p));
+  }
+  // The agents' start requests: the same arguments as a local node's, in a run folder of
+  // the agent's own (agent_protocol.h).
+  for (RemoteNode& r : remote) {
+    json request{{"type", r.type}, {"scene_yaml", scene_text}, {"run_folder", fs::path(run_dir_).filename().string()},
+                 {"domain", domain_}, {"address", r.address}, {"peers", hosts_.peers}, {"lease_s", lease_for(scene_)},
+                 {"partition_grace_s", scene_.faults.partition_grace}, {"control_writer", control_->guid()}};
+    if (r.type == hostrun::kGroupType) request["members"] = r.members;
+    r.request = request.dump();
   }
   local_ = std::make_unique<ProcessNodeHost>(std::move(local));
   if (!remote.empty()) remote_ = std::make_unique<AgentNodeHost>(*agents_, std::move(remote));
