@@ -247,6 +247,21 @@ TEST(Cli, CheckNamesTheNodeTolerancesAndTheSampleTicksOfAnAdaptiveStep) {
   fs::remove(log);
 }
 
+// `mechsim check` says which process group each participant will run in: the one it names,
+// or the one `processes:` packs it into (docs/scenes.md).
+TEST(Cli, CheckNamesEachParticipantsProcessGroup) {
+  const std::string log = (fs::temp_directory_path() / ("mechsim-check-groups-" + std::to_string(::getpid()))).string();
+  CommandResult c = run({kMechsim, "check", scene_path("nc_slide_loop.yaml"), "--set", "processes=1", "--set",
+                         "participants.slide.process=axis"},
+                        log, 30);
+  EXPECT_EQ(c.exit_code, 0) << c.output;
+  EXPECT_NE(c.output.find("in process group axis\n"), std::string::npos) << c.output;
+  EXPECT_NE(c.output.find("in process group auto_cyclone_1 (processes: 1 per vendor)"), std::string::npos) << c.output;
+  CommandResult apart = run({kMechsim, "check", scene_path("nc_slide_loop.yaml")}, log, 30);
+  EXPECT_EQ(apart.output.find("process group"), std::string::npos) << "a process per participant by default";
+  fs::remove(log);
+}
+
 // A scene written for an analysis (its design: section) that is not a time run says which
 // command it is for, from `check` and from `launch`, before anything starts (exit 2).
 TEST(Cli, AnAnalysisSceneNamesItsCommandWhenLaunched) {

@@ -474,7 +474,8 @@ int launch(const LaunchOptions& options) {
       for (const auto& o : dds_layout_overrides(names, options.dds_layout)) set_on_loaded_scene(scene, o);
     }
     // `processes: per_core | N`: this host's participants packed into process groups.
-    for (const auto& o : process_packing_overrides(scene, usable_cores())) set_on_loaded_scene(scene, o);
+    for (const auto& [participant, group] : pack_processes(scene, usable_cores()))
+      set_on_loaded_scene(scene, "participants." + participant + ".process=" + group);
     hosts = plan_hosts(scene);
     // Across a network packets get lost: every sample goes twice (docs/faults.md).
     if (hosts.multi_host && scene.faults.redundant_samples == config::RedundantSamples::automatic)

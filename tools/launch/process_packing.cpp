@@ -14,7 +14,7 @@ int usable_cores() {
   return std::max(1u, std::thread::hardware_concurrency());
 }
 
-std::vector<std::string> process_packing_overrides(const config::Scene& scene, int cores) {
+std::vector<PackedParticipant> pack_processes(const config::Scene& scene, int cores) {
   if (!scene.processes.packs()) return {};
   const config::ConfigNode participants = scene.root.child("participants");
   // Packed participants by host, vendor and restart policy, in scene order.
@@ -34,7 +34,7 @@ std::vector<std::string> process_packing_overrides(const config::Scene& scene, i
   }
   const int per_vendor = scene.processes.kind == config::ProcessLayout::Kind::per_core ? cores : scene.processes.count;
   std::map<std::pair<std::string, std::string>, int> groups_so_far;  // (host, vendor) -> groups numbered
-  std::vector<std::string> out;
+  std::vector<PackedParticipant> out;
   for (const Key& key : order) {
     const std::vector<std::string>& names = packable[key];
     const int n = static_cast<int>(names.size());
@@ -45,7 +45,7 @@ std::vector<std::string> process_packing_overrides(const config::Scene& scene, i
     const std::string prefix = "auto_" + (key.host.empty() ? "" : key.host + "_") + key.vendor + "_";
     // Contiguous, sizes differing by at most one: member i goes to group i * groups / n.
     for (int i = 0; i < n; ++i)
-      out.push_back("participants." + names[i] + ".process=" + prefix + std::to_string(first + i * groups / n));
+      out.push_back({names[i], prefix + std::to_string(first + i * groups / n)});
   }
   return out;
 }

@@ -15,8 +15,13 @@ namespace mechsim::launch {
 // The cores this process may run on (its CPU affinity), at least 1.
 int usable_cores();
 
-// The `participants.<p>.process=<group>` settings that lay the scene out as its `processes:`
-// asks, `cores` being the launcher's host's (taken for every host: the launcher cannot see
+// A participant the launcher puts into a process group, and which.
+struct PackedParticipant {
+  std::string participant;
+  std::string group;
+};
+
+// The process groups that lay the scene out as its `processes:` asks, `cores` being the launcher's host's (taken for every host: the launcher cannot see
 // the others'; `processes: N` says it for all); none for per_participant. Packed are the
 // participants without `process:` or a `realtime:` of their own; each host and DDS vendor
 // gets its own groups (`auto_<vendor>_<i>` on the launcher's host, `auto_<host>_<vendor>_<i>`
@@ -24,6 +29,6 @@ int usable_cores();
 // in scene order share a group (scenes list partners side by side: a cam and its follower),
 // so most samples stay inside a process. Groups per host and vendor: `cores` (per_core) or
 // the scene's count, never more than the participants packed.
-std::vector<std::string> process_packing_overrides(const config::Scene& scene, int cores);
+std::vector<PackedParticipant> pack_processes(const config::Scene& scene, int cores);
 
 }  // namespace mechsim::launch

@@ -1,4 +1,5 @@
 #include <cstdio>
+#include <map>
 #include <numbers>
 #include <string>
 
@@ -6,6 +7,7 @@
 #include "mechsim/config/scene.h"
 #include "mechsim/cosim/process_realtime.h"
 #include "mechsim/cosim/scene_plan.h"
+#include "process_packing.h"
 #include "run_security.h"
 
 namespace mechsim::tools {
@@ -55,6 +57,15 @@ void add_check_command(CLI::App& app, int& exit_code) {
           if (node.block->sample_time() > 0)
             std::printf("  steps land on %s's sample instants, every %g s (no step is longer)\n", node.name().c_str(),
                         node.block->sample_time());
+      // Where each participant runs: its own process, a group it names, or one the launcher
+      // packs it into (`processes:`, docs/scenes.md).
+      std::map<std::string, std::string> group_of;
+      for (const auto& p : scene.participants)
+        if (!p.process.empty()) group_of[p.name] = p.process;
+      const int cores = launch::usable_cores();
+      for (const auto& [participant, group] : launch::pack_processes(scene, cores))
+        group_of[participant] = group + " (processes: " + (scene.processes.count > 0 ? std::to_string(scene.processes.count) + " per vendor"
+                                                                                     : "per_core, " + std::to_string(cores) + " cores here") + ")";
       for (const auto& node : plan.nodes()) {
         std::printf("  %-12s %-12s publishes %-24s (%d states, %s)\n", node.name().c_str(), node.type->name.c_str(),
                     node.topic.c_str(), node.block->num_states(), node.spec->vendor.c_str());
@@ -79,6 +90,8 @@ void add_check_command(CLI::App& app, int& exit_code) {
           std::printf("  %12s on host %s (%s; started by its mechsim agent unless the launcher runs there)\n", "",
                       host->name.c_str(), host->address.c_str());
         }
+        if (auto g = group_of.find(node.name()); g != group_of.end())
+          std::printf("  %12s in process group %s\n", "", g->second.c_str());
         if (node.cut)
           std::printf("  %12s <> %s (interface_jacobian, %d levels)\n", "", node.cut->partner_topic.c_str(), node.cut->levels);
         // Real-time process settings (applied in realtime mode only), and whether this user may.

@@ -15,24 +15,19 @@ namespace {
 
 const std::string kLineShaft = MECHSIM_SOURCE_DIR "/config/scenes/line_shaft_4.yaml";
 
-// participant -> group, from the overrides.
-std::map<std::string, std::string> groups(const std::vector<std::string>& overrides) {
+// participant -> group.
+std::map<std::string, std::string> groups(const std::vector<PackedParticipant>& packed) {
   std::map<std::string, std::string> out;
-  for (const auto& o : overrides) {
-    const std::string key = o.substr(0, o.find('='));
-    EXPECT_EQ(key.substr(0, 13), "participants.") << o;
-    EXPECT_EQ(key.substr(key.size() - 8), ".process") << o;
-    out[key.substr(13, key.size() - 21)] = o.substr(o.find('=') + 1);
-  }
+  for (const auto& [participant, group] : packed) EXPECT_TRUE(out.emplace(participant, group).second) << participant << " twice";
   return out;
 }
 
 TEST(ProcessPacking, PerParticipantPacksNothing) {
-  EXPECT_TRUE(process_packing_overrides(config::load_scene(kLineShaft, {"processes=per_participant"}), 2).empty());
+  EXPECT_TRUE(pack_processes(config::load_scene(kLineShaft, {"processes=per_participant"}), 2).empty());
 }
 
 TEST(ProcessPacking, PerCoreKeepsNeighboursTogetherInOneGroupPerCore) {
-  const auto g = groups(process_packing_overrides(config::load_scene(kLineShaft, {"processes=per_core"}), 2));
+  const auto g = groups(pack_processes(config::load_scene(kLineShaft, {"processes=per_core"}), 2));
   ASSERT_EQ(g.size(), 9u);
   // Nine participants on two cores: the first five, then the last four, in scene order.
   for (const char* p : {"cvt", "cam_1", "follower_1", "cam_2", "follower_2"}) EXPECT_EQ(g.at(p), "auto_cyclone_1") << p;
@@ -40,7 +35,7 @@ TEST(ProcessPacking, PerCoreKeepsNeighboursTogetherInOneGroupPerCore) {
 }
 
 TEST(ProcessPacking, EachVendorGetsItsOwnGroupsAndNeverMoreGroupsThanMembers) {
-  const auto g = groups(process_packing_overrides(
+  const auto g = groups(pack_processes(
       config::load_scene(kLineShaft, {"processes=4", "participants.cam_2.dds=fastdds", "participants.cam_3.dds=fastdds"}), 2));
   EXPECT_EQ(g.at("cam_2"), "auto_fastdds_1");
   EXPECT_EQ(g.at("cam_3"), "auto_fastdds_2");
@@ -51,7 +46,7 @@ TEST(ProcessPacking, EachVendorGetsItsOwnGroupsAndNeverMoreGroupsThanMembers) {
 }
 
 TEST(ProcessPacking, ParticipantsThatChoseTheirProcessOrCannotJoinAGroupStayApart) {
-  const auto g = groups(process_packing_overrides(
+  const auto g = groups(pack_processes(
       config::load_scene(kLineShaft, {"processes=per_core", "participants.cvt.process=drive", "participants.cam_4.realtime.priority=10",
                                       "participants.follower_4.restart=on_failure"}),
       1));
@@ -62,7 +57,7 @@ TEST(ProcessPacking, ParticipantsThatChoseTheirProcessOrCannotJoinAGroupStayApar
 }
 
 TEST(ProcessPacking, EachHostGetsItsOwnGroups) {
-  const auto g = groups(process_packing_overrides(
+  const auto g = groups(pack_processes(
       config::load_scene(kLineShaft, {"processes=1", "dds.domain=5", "hosts.b.address=10.0.0.2", "participants.cam_3.host=b",
                                       "participants.follower_3.host=b", "participants.cam_4.host=b"}),
       2));
