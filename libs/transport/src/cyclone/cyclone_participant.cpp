@@ -15,7 +15,6 @@
 #include "fmu.h"
 
 #include <cstdint>
-#include <limits>
 #include "mechsim/transport/raw.h"
 #include "status.h"
 
@@ -201,12 +200,7 @@ class CycloneSequenceWriter final : public SampleWriter {
   ~CycloneSequenceWriter() override { dds_delete(writer_); }
   void write(const SampleHeader& header, std::span<const double> values) override {
     if (values.size() != type_.fields.size()) throw std::logic_error("write " + type_.idl_name + ": wrong number of values");
-    for (std::size_t i = 0; i < values.size(); ++i) {
-      const FieldKind kind = type_.fields[i].kind;
-      if (kind == FieldKind::f64) reals_[at_[i]] = values[i];
-      else if (kind == FieldKind::i32) integers_[at_[i]] = static_cast<std::int32_t>(values[i]);
-      else booleans_[at_[i]] = values[i] != 0.0;
-    }
+    pack_sequences(type_, at_, values.data(), reals_, integers_, booleans_);
     mechsim_msg_FmuOutputs m{};
     m.header = {header.run_id, header.step, header.t};
     m.reals = {static_cast<uint32_t>(reals_.size()), static_cast<uint32_t>(reals_.size()), reals_.data(), false};
@@ -240,16 +234,8 @@ class CycloneSequenceReader final : public SampleReader {
   bool take(SampleHeader& header, std::vector<double>& values) override {
     if (!take_one(reader_, &sample_)) return false;
     header = {sample_.header.run_id, sample_.header.step, sample_.header.t};
-    // A sample shorter than the type (another FMU on the topic) leaves NaN, which the
-    // sample gate refuses as implausible.
-    values.assign(type_.fields.size(), std::numeric_limits<double>::quiet_NaN());
-    for (std::size_t i = 0; i < values.size(); ++i) {
-      const FieldKind kind = type_.fields[i].kind;
-      const std::size_t j = at_[i];
-      if (kind == FieldKind::f64 && j < sample_.reals._length) values[i] = sample_.reals._buffer[j];
-      else if (kind == FieldKind::i32 && j < sample_.integers._length) values[i] = sample_.integers._buffer[j];
-      else if (kind == FieldKind::boolean && j < sample_.booleans._length) values[i] = sample_.booleans._buffer[j] ? 1.0 : 0.0;
-    }
+    unpack_sequences(type_, at_, sample_.reals._buffer, sample_.reals._length, sample_.integers._buffer, sample_.integers._length,
+                     sample_.booleans._buffer, sample_.booleans._length, values);
     return true;
   }
   int matched_writers() const override { return subscription_matched(reader_); }
@@ -473,37 +459,26 @@ dds_entity_t CycloneParticipant::attach_reader(dds_entity_t reader) {
 }
 
 std::unique_ptr<SampleWriter> CycloneParticipant::data_writer(const std::string& topic_name, const TopicType& type, bool redundant) {
-  if (type.layout == TopicLayout::sequences) {
-    Qos qos;
-    set_qos(qos, redundant ? QosKind::redundant : QosKind::data);
-    const std::string name = redundant ? redundant_topic(topic_name) : topic_name;
-    dds_entity_t w = check(dds_create_writer(participant_, topic(name, &mechsim_msg_FmuOutputs_desc), qos.q, nullptr),
-                           "create writer on " + name);
-    return std::make_unique<CycloneSequenceWriter>(w, type);
-  }
-  const CycloneType& ct = cyclone_type(type);
   Qos qos;
   set_qos(qos, redundant ? QosKind::redundant : QosKind::data);
   const std::string name = redundant ? redundant_topic(topic_name) : topic_name;
-  dds_entity_t w = check(dds_create_writer(participant_, topic(name, ct.descriptor), qos.q, nullptr), "create writer on " + name);
-  return std::make_unique<CycloneSampleWriter>(w, ct);
+  // An FMU participant's topic travels as FmuOutputs (idl/fmu.idl), the others as their own type.
+  const bool sequences = type.layout == TopicLayout::sequences;
+  const dds_topic_descriptor_t* descriptor = sequences ? &mechsim_msg_FmuOutputs_desc : cyclone_type(type).descriptor;
+  dds_entity_t w = check(dds_create_writer(participant_, topic(name, descriptor), qos.q, nullptr), "create writer on " + name);
+  if (sequences) return std::make_unique<CycloneSequenceWriter>(w, type);
+  return std::make_unique<CycloneSampleWriter>(w, cyclone_type(type));
 }
 
 std::unique_ptr<SampleReader> CycloneParticipant::data_reader(const std::string& topic_name, const TopicType& type, bool redundant) {
-  if (type.layout == TopicLayout::sequences) {
-    Qos qos;
-    set_qos(qos, redundant ? QosKind::redundant : QosKind::data);
-    const std::string name = redundant ? redundant_topic(topic_name) : topic_name;
-    dds_entity_t r = check(dds_create_reader(participant_, topic(name, &mechsim_msg_FmuOutputs_desc), qos.q, nullptr),
-                           "create reader on " + name);
-    return std::make_unique<CycloneSequenceReader>(attach_reader(r), type);
-  }
-  const CycloneType& ct = cyclone_type(type);
   Qos qos;
   set_qos(qos, redundant ? QosKind::redundant : QosKind::data);
   const std::string name = redundant ? redundant_topic(topic_name) : topic_name;
-  dds_entity_t r = check(dds_create_reader(participant_, topic(name, ct.descriptor), qos.q, nullptr), "create reader on " + name);
-  return std::make_unique<CycloneSampleReader>(attach_reader(r), ct);
+  const bool sequences = type.layout == TopicLayout::sequences;
+  const dds_topic_descriptor_t* descriptor = sequences ? &mechsim_msg_FmuOutputs_desc : cyclone_type(type).descriptor;
+  dds_entity_t r = check(dds_create_reader(participant_, topic(name, descriptor), qos.q, nullptr), "create reader on " + name);
+  if (sequences) return std::make_unique<CycloneSequenceReader>(attach_reader(r), type);
+  return std::make_unique<CycloneSampleReader>(attach_reader(r), cyclone_type(type));
 }
 
 std::unique_ptr<SampleWriter> CycloneParticipant::create_writer(const std::string& topic_name, const TopicType& type) {

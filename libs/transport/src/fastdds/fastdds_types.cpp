@@ -1,6 +1,5 @@
 #include "fastdds_types.h"
 
-#include <limits>
 #include <mutex>
 #include <stdexcept>
 #include <string>
@@ -92,24 +91,12 @@ class FmuOutputsSample final : public FastSample {
     msg_.reals().resize(reals_);
     msg_.integers().resize(integers_);
     msg_.booleans().resize(booleans_);
-    for (std::size_t i = 0; i < values.size(); ++i) {
-      const FieldKind kind = type_.fields[i].kind;
-      if (kind == FieldKind::f64) msg_.reals()[at_[i]] = values[i];
-      else if (kind == FieldKind::i32) msg_.integers()[at_[i]] = static_cast<std::int32_t>(values[i]);
-      else msg_.booleans()[at_[i]] = values[i] != 0.0;
-    }
+    pack_sequences(type_, at_, values.data(), msg_.reals(), msg_.integers(), msg_.booleans());
   }
   void load(SampleHeader& header, std::vector<double>& values) override {
     header = {msg_.header().run_id(), msg_.header().step(), msg_.header().t()};
-    values.assign(type_.fields.size(), std::numeric_limits<double>::quiet_NaN());
-    for (std::size_t i = 0; i < values.size(); ++i) {
-      const FieldKind kind = type_.fields[i].kind;
-      // A sample shorter than the type (another FMU on the topic) leaves NaN, which the
-      // sample gate refuses as implausible.
-      if (kind == FieldKind::f64 && at_[i] < msg_.reals().size()) values[i] = msg_.reals()[at_[i]];
-      else if (kind == FieldKind::i32 && at_[i] < msg_.integers().size()) values[i] = msg_.integers()[at_[i]];
-      else if (kind == FieldKind::boolean && at_[i] < msg_.booleans().size()) values[i] = msg_.booleans()[at_[i]] ? 1.0 : 0.0;
-    }
+    unpack_sequences(type_, at_, msg_.reals(), msg_.reals().size(), msg_.integers(), msg_.integers().size(), msg_.booleans(),
+                     msg_.booleans().size(), values);
   }
 
  private:

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <string>
 #include <string_view>
@@ -51,6 +52,35 @@ inline constexpr const char* kFmuOutputsTypeName = "mechsim::msg::FmuOutputs";
 TopicType fmu_topic_type(std::vector<FieldInfo> fields);
 // Where a field's value sits in its sequence: (kind, index within that kind's sequence).
 std::vector<std::size_t> sequence_positions(const TopicType& type);
+
+// The values of a sample of a sequences-layout type into FmuOutputs' three sequences, and
+// back, for every backend's own sequence storage (anything indexable; the sequences sized
+// by the caller when packing). `at`: sequence_positions(type).
+template <class Reals, class Integers, class Booleans>
+void pack_sequences(const TopicType& type, const std::vector<std::size_t>& at, const double* values, Reals& reals,
+                    Integers& integers, Booleans& booleans) {
+  for (std::size_t i = 0; i < type.fields.size(); ++i) {
+    const FieldKind kind = type.fields[i].kind;
+    if (kind == FieldKind::f64) reals[at[i]] = values[i];
+    else if (kind == FieldKind::i32) integers[at[i]] = static_cast<std::int32_t>(values[i]);
+    else booleans[at[i]] = values[i] != 0.0;
+  }
+}
+// A sample shorter than the type (another FMU on the topic) leaves NaN, which the sample
+// gate refuses as implausible.
+template <class Reals, class Integers, class Booleans>
+void unpack_sequences(const TopicType& type, const std::vector<std::size_t>& at, const Reals& reals, std::size_t n_reals,
+                      const Integers& integers, std::size_t n_integers, const Booleans& booleans, std::size_t n_booleans,
+                      std::vector<double>& values) {
+  values.assign(type.fields.size(), std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    const FieldKind kind = type.fields[i].kind;
+    const std::size_t j = at[i];
+    if (kind == FieldKind::f64 && j < n_reals) values[i] = reals[j];
+    else if (kind == FieldKind::i32 && j < n_integers) values[i] = integers[j];
+    else if (kind == FieldKind::boolean && j < n_booleans) values[i] = booleans[j] ? 1.0 : 0.0;
+  }
+}
 
 // All data topic types, and lookup by the short name used in code ("CamState").
 const std::vector<const TopicType*>& all_topic_types();
