@@ -121,6 +121,7 @@ class Supervisor {
  private:
   void take_status();
   void check_exits(bool running);
+  void await_final_status(const std::vector<NodeExit>& exits);
   void roll_back();
   void watch_silence();
   bool wait_ready();
