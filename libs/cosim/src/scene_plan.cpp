@@ -216,7 +216,13 @@ void ScenePlan::land_on_scheduled_events() {
       }
   }
   std::sort(scheduled_events_.begin(), scheduled_events_.end(),
-            [](const ScheduledEvent& a, const ScheduledEvent& b) { return a.t < b.t; });
+            [](const ScheduledEvent& a, const ScheduledEvent& b) { return a.t != b.t ? a.t < b.t : a.participant < b.participant; });
+  // A jump written as two schedule rows at one time is one event of that participant.
+  scheduled_events_.erase(std::unique(scheduled_events_.begin(), scheduled_events_.end(),
+                                      [](const ScheduledEvent& a, const ScheduledEvent& b) {
+                                        return a.t == b.t && a.participant == b.participant;
+                                      }),
+                          scheduled_events_.end());
   std::vector<double> times;
   for (const auto& e : scheduled_events_) times.push_back(e.t);
   // Every node plans the same scene, so every node lands on the same events: no message.
