@@ -50,7 +50,7 @@ int node_group_main(int argc, char** argv) {
       const auto eq = r.find('=');
       if (eq == std::string::npos) {
         std::cerr << "node group: --replay expects NODE=TABLE, got '" << r << "'\n";
-        return 2;
+        return cosim::node_exit_code::bad_input;
       }
       replay_of[r.substr(0, eq)] = r.substr(eq + 1);
     }
@@ -59,12 +59,12 @@ int node_group_main(int argc, char** argv) {
       const auto* spec = scene.find_participant(name);
       if (!spec) {
         std::cerr << "node group: no participant '" << name << "' in " << scene_path << "\n";
-        return 2;
+        return cosim::node_exit_code::bad_input;
       }
       if (spec->process.empty() || (first && spec->process != first->process)) {
         std::cerr << "node group: participant '" << name << "' is not in process group '" << (first ? first->process : spec->process)
                   << "' of " << scene_path << "\n";
-        return 2;
+        return cosim::node_exit_code::bad_input;
       }
       if (!first) first = spec;
     }
@@ -89,11 +89,11 @@ int node_group_main(int argc, char** argv) {
     threads.start_all();
     // The process ends with its nodes; the first node that fails stops the others (its
     // exit code is the process's), as a node process that fails ends its node.
-    int code = 0;
+    int code = cosim::node_exit_code::done;
     for (std::size_t running = node_names.size(); running > 0;) {
       for (const cosim::NodeExit& e : threads.poll()) {
         --running;
-        if (const int c = threads.exit_code(e.node); c != 0 && code == 0) {
+        if (const int c = threads.exit_code(e.node); c != cosim::node_exit_code::done && code == cosim::node_exit_code::done) {
           code = c;
           threads.request_stop();
         }
@@ -105,10 +105,10 @@ int node_group_main(int argc, char** argv) {
     return code;
   } catch (const config::ConfigError& e) {
     std::cerr << e.what() << "\n";
-    return 2;
+    return cosim::node_exit_code::bad_input;
   } catch (const std::exception& e) {
     std::cerr << "node group: " << e.what() << "\n";
-    return 1;
+    return cosim::node_exit_code::failed;
   }
 }
 

@@ -53,6 +53,7 @@ void apply_testing_seams(const config::ParticipantSpec& spec, cosim::NodeRunOpti
   options.lose_write_of_step = spec.lose_write_of_step;
   options.checkpoint_pause_step = spec.checkpoint_pause_step;
   options.checkpoint_pause_s = spec.checkpoint_pause;
+  options.lose_failed_status = spec.lose_failed_status;
 }
 
 void stop_on_signals() {
@@ -98,11 +99,11 @@ int node_main(const char* node_type, int argc, char** argv) {
     const auto* spec = scene.find_participant(node_name);
     if (!spec) {
       std::cerr << node_type << ": no participant '" << node_name << "' in " << scene_path << "\n";
-      return 2;
+      return cosim::node_exit_code::bad_input;
     }
     if (spec->type != node_type) {
       std::cerr << node_type << ": participant '" << node_name << "' is a " << spec->type << ", not a " << node_type << "\n";
-      return 2;
+      return cosim::node_exit_code::bad_input;
     }
     std::unique_ptr<cosim::ScenePlan> plan = node_plan(scene, node_name, replay);
     apply_realtime(scene, *spec, run_dir, {node_name});
@@ -119,10 +120,10 @@ int node_main(const char* node_type, int argc, char** argv) {
     return cosim::run_node(*plan, node_name, *participant, options);
   } catch (const config::ConfigError& e) {
     std::cerr << e.what() << "\n";
-    return 2;
+    return cosim::node_exit_code::bad_input;
   } catch (const std::exception& e) {
     std::cerr << node_type << " '" << node_name << "': " << e.what() << "\n";
-    return 1;
+    return cosim::node_exit_code::failed;
   }
 }
 

@@ -42,22 +42,41 @@ TEST_F(NcLoop, ShippedStepSceneIsStableAndAccurateAsShipped) {
   EXPECT_TRUE(step["settled"].get<bool>());
 }
 
-TEST_F(NcLoop, AMacroStepBeyondTheStabilityLimitStopsWithAdvice) {
-  // 200 us is twice the measured limit of the compliant coupling with the cut extrapolated
-  // linearly and the electrical edges held (docs/nc-loop.md), the scheme the scene shipped
-  // before issue 31, pinned here for that margin. The shipped scheme (edges linear, cut
-  // quadratic) is stable to 176 us and also diverges at 200 us (docs/stability.md).
-  CommandResult r = launch("nc_slide_loop.yaml", {"--step", "200 us", "--set", "connections[0].reconstruction=hold", "--set",
-                                                  "connections[1].reconstruction=hold", "--set",
-                                                  "connections[2].reconstruction=hold", "--set",
-                                                  "connections[3].reconstruction=linear", "--set",
-                                                  "connections[4].reconstruction=linear"});
+// 200 us is twice the measured limit of the compliant coupling with the cut extrapolated
+// linearly and the electrical edges held (docs/nc-loop.md), the scheme the scene shipped
+// before issue 31, pinned here for that margin. The shipped scheme (edges linear, cut
+// quadratic) is stable to 176 us and also diverges at 200 us (docs/stability.md).
+std::vector<std::string> beyond_the_stability_limit(std::vector<std::string> more = {}) {
+  std::vector<std::string> args{"--step", "200 us", "--set", "connections[0].reconstruction=hold", "--set",
+                                "connections[1].reconstruction=hold", "--set", "connections[2].reconstruction=hold", "--set",
+                                "connections[3].reconstruction=linear", "--set", "connections[4].reconstruction=linear"};
+  args.insert(args.end(), more.begin(), more.end());
+  return args;
+}
+
+void expect_stopped_with_advice(const CommandResult& r) {
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_NE(r.output.find("diverged"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("tacho -> slide"), std::string::npos) << r.output;  // the connection
   // A step to try: the launcher halves the step in process until a run is stable; 100 us
   // lies below the measured limit (105-110 us), so that is the step it names.
   EXPECT_NE(r.output.find("--step '100 us'"), std::string::npos) << r.output;
+}
+
+TEST_F(NcLoop, AMacroStepBeyondTheStabilityLimitStopsWithAdvice) {
+  expect_stopped_with_advice(launch("nc_slide_loop.yaml", beyond_the_stability_limit()));
+}
+
+// Status travels best effort; on a loaded machine the failed node's last one was lost and
+// the run stopped without advice (CI, stop 35). The exit code says it diverged
+// (docs/protocol.md, "Failures"): every node here fails without a failed status.
+TEST_F(NcLoop, TheAdviceNeedsNoStatusFromTheNodeThatDiverged) {
+  std::vector<std::string> lose;
+  for (const char* node : {"servo", "tacho", "slide"})
+    lose.insert(lose.end(), {"--set", std::string("participants.") + node + ".testing.lose_failed_status=true"});
+  const CommandResult r = launch("nc_slide_loop.yaml", beyond_the_stability_limit(lose));
+  expect_stopped_with_advice(r);
+  EXPECT_NE(r.output.find("exit code 4"), std::string::npos) << r.output;
 }
 
 TEST_F(NcLoop, FollowingErrorAtConstantFeedIsVelocityOverGain) {

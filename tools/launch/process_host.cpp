@@ -26,7 +26,7 @@ std::vector<cosim::NodeExit> ProcessNodeHost::poll() {
   for (const hostrun::NodeProcess* p : processes_.poll())
     for (const auto& planned : planned_)
       if (planned.name == p->name)
-        for (const auto& member : planned.members) out.push_back({member, !p->signalled && p->exit_code == 0, p->signalled});
+        for (const auto& member : planned.members) out.push_back(cosim::node_exit(member, p->exit_code, p->signalled));
   return out;
 }
 

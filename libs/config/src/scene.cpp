@@ -384,7 +384,8 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
     ParticipantSpec spec;
     spec.name = name;
     if (auto t = p.optional_child("testing")) {
-      t->allow_only({"lose_writes_after_resume", "lose_write_of_step", "checkpoint_pause_step", "checkpoint_pause"});
+      t->allow_only({"lose_writes_after_resume", "lose_write_of_step", "checkpoint_pause_step", "checkpoint_pause", "lose_failed_status"});
+      spec.lose_failed_status = t->has("lose_failed_status") && t->boolean("lose_failed_status");
       if (t->has("lose_write_of_step")) spec.lose_write_of_step = static_cast<std::uint64_t>(t->integer("lose_write_of_step"));
       spec.lose_writes_after_resume = t->has("lose_writes_after_resume") && t->boolean("lose_writes_after_resume");
       if (t->has("checkpoint_pause_step")) spec.checkpoint_pause_step = static_cast<std::uint64_t>(t->integer("checkpoint_pause_step"));

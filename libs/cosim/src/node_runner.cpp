@@ -50,7 +50,7 @@ class NodeLoop {
  public:
   NodeLoop(ScenePlan& plan, const std::string& name, transport::Participant& participant, const NodeRunOptions& options,
            NodeStatus& status);
-  // 0 done, 3 stopped or aborted; throws on failure.
+  // node_exit_code::done or ::stopped; throws on failure.
   int run();
 
  private:
@@ -148,7 +148,7 @@ int NodeLoop::run() {
   }
   const auto start = await_start(io_, control_, status_, resumed_ ? transport::ControlCommand::resume : transport::ControlCommand::start,
                                  generation_, options_.start_timeout_s, options_.stop_requested);
-  if (!start) return 3;
+  if (!start) return node_exit_code::stopped;
   status_.resumed();
   status_.set_state(transport::NodeState::running);
   pacing_.emplace(plan_, *start);
@@ -169,15 +169,15 @@ int NodeLoop::run() {
       status_.tick();
     }
     if (stepper_.finished()) break;
-    if (stop_requested() || take_commands()) return 3;
+    if (stop_requested() || take_commands()) return node_exit_code::stopped;
     if (pending_rollback_) {
-      if (!roll_back(*std::exchange(pending_rollback_, std::nullopt))) return 3;
+      if (!roll_back(*std::exchange(pending_rollback_, std::nullopt))) return node_exit_code::stopped;
       continue;
     }
     wait_for_samples();
   }
   finish();
-  return 0;
+  return node_exit_code::done;
 }
 
 void NodeLoop::initialise() {
@@ -307,10 +307,10 @@ void NodeLoop::finish() {
               status_.elapsed());
 }
 
-int fail(const std::string& node, NodeStatus& status, transport::NodeError error, const char* what) {
+int fail(const std::string& node, NodeStatus& status, transport::NodeError error, const char* what, bool lose_status) {
   std::fprintf(stderr, "%s: error: %s\n", node.c_str(), what);
-  status.failed(error, what);
-  return 1;
+  if (!lose_status) status.failed(error, what);
+  return transport::points_to_divergence(error) ? node_exit_code::diverged : node_exit_code::failed;
 }
 
 }  // namespace
@@ -323,9 +323,9 @@ int run_node(ScenePlan& plan, const std::string& node_name, transport::Participa
     NodeLoop loop(plan, node_name, participant, options, status);
     return loop.run();
   } catch (const NodeFailure& e) {
-    return fail(node_name, status, e.kind(), e.what());
+    return fail(node_name, status, e.kind(), e.what(), options.lose_failed_status);
   } catch (const std::exception& e) {
-    return fail(node_name, status, transport::NodeError::other, e.what());
+    return fail(node_name, status, transport::NodeError::other, e.what(), options.lose_failed_status);
   }
 }
 

@@ -107,7 +107,7 @@ std::vector<NodeExit> ThreadNodeHost::poll() {
   for (auto& slot : slots_)
     if (!slot->reported && slot->exit_code >= 0) {
       slot->reported = true;
-      out.push_back({slot->name, slot->exit_code == 0, false});
+      out.push_back(node_exit(slot->name, slot->exit_code, false));
     }
   return out;
 }
@@ -125,8 +125,9 @@ int ThreadNodeHost::exit_code(const std::string& node) const { return slot(node)
 std::string ThreadNodeHost::describe_exit(const std::string& node) const {
   const int code = slot(node).exit_code;
   if (code < 0) return "running";
-  if (code == 0) return "done";
-  if (code == 1) return "failed";
+  if (code == node_exit_code::done) return "done";
+  if (code == node_exit_code::failed) return "failed";
+  if (code == node_exit_code::diverged) return "failed (diverged)";
   return "stopped (exit code " + std::to_string(code) + ")";
 }
 

@@ -100,8 +100,10 @@ struct ParticipantSpec {
   // a partner that had not yet matched its writers would miss them; checkpoint_pause_step: K
   // with checkpoint_pause: 3 s, it stops that long halfway through writing its checkpoint of K;
   // lose_write_of_step: K, it leaves out its write of step K, as a sample lost on the wire
-  // and never repaired (tests/integration/lost_sample_test.cpp).
+  // and never repaired (tests/integration/lost_sample_test.cpp); lose_failed_status: true, a
+  // node that fails writes no failed status, as one lost on the wire (nc_loop_test).
   bool lose_writes_after_resume = false;
+  bool lose_failed_status = false;
   std::optional<std::uint64_t> lose_write_of_step;
   std::optional<std::uint64_t> checkpoint_pause_step;
   double checkpoint_pause = 0.0;  // s

@@ -12,12 +12,30 @@
 
 namespace mechsim::cosim {
 
+// A node's exit code, as a process (node_main) or a thread (run_node). The code carries the
+// kind of failure so the supervisor knows it without the node's last status, which travels
+// best effort and can be lost on a loaded machine (a divergence gets stable-step advice).
+namespace node_exit_code {
+constexpr int done = 0;
+constexpr int failed = 1;      // any error not named below
+constexpr int bad_input = 2;   // the scene or the command line, before the run
+constexpr int stopped = 3;     // aborted by the launcher or a signal
+constexpr int diverged = 4;    // its own divergence guard, or a partner's implausible sample
+}  // namespace node_exit_code
+
 // One node that stopped running.
 struct NodeExit {
   std::string node;
-  bool clean = false;    // finished normally (exit code 0)
-  bool crashed = false;  // died on a signal (killed, a crash, the OOM killer): a restart may help
+  bool clean = false;     // finished normally (exit code 0)
+  bool crashed = false;   // died on a signal (killed, a crash, the OOM killer): a restart may help
+  bool diverged = false;  // exit code node_exit_code::diverged
 };
+
+// The NodeExit of `node` from its exit code (or its signal).
+inline NodeExit node_exit(std::string node, int exit_code, bool signalled) {
+  return {std::move(node), !signalled && exit_code == node_exit_code::done, signalled,
+          !signalled && exit_code == node_exit_code::diverged};
+}
 
 class NodeHost {
  public:

@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 
+#include "mechsim/cosim/node_host.h"
 #include "mechsim/cosim/scene_plan.h"
 #include "mechsim/transport/participant.h"
 
@@ -37,10 +38,14 @@ struct NodeRunOptions {
   // node stops this long halfway through writing its checkpoint of this step.
   std::optional<std::uint64_t> checkpoint_pause_step;
   double checkpoint_pause_s = 0.0;
+  // Test seam (nc_loop_test; `testing.lose_failed_status`): a node that fails writes no
+  // failed status, as one lost on the wire; its exit code still says what failed.
+  bool lose_failed_status = false;
 };
 
-// Runs the node to the end of the scene. Returns the process exit code: 0 done, 1 failed,
-// 3 aborted by the launcher or a signal. Errors are reported on mechsim/status and stderr.
+// Runs the node to the end of the scene. Returns the process exit code (node_host.h,
+// node_exit_code): done, failed, diverged, or stopped by the launcher or a signal. Errors
+// are reported on mechsim/status and stderr.
 int run_node(ScenePlan& plan, const std::string& node_name, transport::Participant& participant,
              const NodeRunOptions& options);
 

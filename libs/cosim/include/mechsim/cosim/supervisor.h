@@ -121,12 +121,11 @@ class Supervisor {
  private:
   void take_status();
   void check_exits(bool running);
-  void await_final_status(const std::vector<NodeExit>& exits);
   void roll_back();
   void watch_silence();
   bool wait_ready();
   bool wait_readers();
-  void fail(const std::string& node, const std::string& reason);
+  void fail(const std::string& node, const std::string& reason, bool exit_says_diverged = false);
   void say(const std::string& line) const;
   void pump();
   double since_start() const;
