@@ -4,7 +4,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <stdexcept>
-#include <thread>
 
 #include "mechsim/cosim/checkpoint.h"
 #include "mechsim/cosim/output_log.h"
@@ -66,13 +65,14 @@ void Supervisor::pump() {
 
 double Supervisor::since_start() const { return seconds_since(started_); }
 
-void Supervisor::fail(const std::string& node, const std::string& reason) {
+void Supervisor::fail(const std::string& node, const std::string& reason, bool exit_says_diverged) {
   if (!out_.reason.empty()) return;  // keep the first cause
   out_.ok = false;
   out_.failed_node = node;
   out_.reason = reason;
+  // The exit code says so even when the node's failed status (best effort) was lost.
   const auto it = watch_.find(node);
-  out_.diverged = it != watch_.end() && it->second.seen && is_divergence(it->second.last);
+  out_.diverged = exit_says_diverged || (it != watch_.end() && it->second.seen && is_divergence(it->second.last));
   out_.failed_step = last_step_of(node);
 }
 
@@ -109,28 +109,11 @@ void Supervisor::take_status() {
   }
 }
 
-// A node that fails writes its failed status, then exits; on a loaded machine the exit can
-// be seen before the status arrives, and the status says what kind of failure it was (a
-// divergence gets advice on the macro step). Waits at most 1 s, only for nodes that
-// exited with an error of their own (a crash writes no status).
-void Supervisor::await_final_status(const std::vector<NodeExit>& exits) {
-  const auto deadline = Clock::now() + std::chrono::seconds(1);
-  for (;;) {
-    take_status();
-    const bool missing = std::any_of(exits.begin(), exits.end(), [&](const NodeExit& e) {
-      const auto it = watch_.find(e.node);
-      return !e.clean && !e.crashed && it != watch_.end() && it->second.last.state != transport::NodeState::failed;
-    });
-    if (!missing || Clock::now() >= deadline) return;
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-}
-
 void Supervisor::check_exits(bool running) {
   std::vector<NodeExit> exits;
   for (NodeHost* host : hosts_)
     for (auto& e : host->poll()) exits.push_back(std::move(e));
-  if (!exits.empty()) await_final_status(exits);
+  if (!exits.empty()) take_status();  // a final status may carry the message
   for (const NodeExit& e : exits) {
     NodeHost& host = host_of(e.node);
     const bool restartable = std::find(opt_.restartable.begin(), opt_.restartable.end(), e.node) != opt_.restartable.end();
@@ -151,7 +134,7 @@ void Supervisor::check_exits(bool running) {
       std::string message = w.seen ? w.last.message : "";
       if (hooks_.exit_message) message = hooks_.exit_message(e.node, message);
       if (!message.empty()) reason += ": " + message;
-      fail(e.node, reason);
+      fail(e.node, reason, e.diverged);
     }
   }
 }
