@@ -1,40 +1,29 @@
 #include "agent_host.h"
 
-#include <algorithm>
 #include <stdexcept>
+
+#include "process_members.h"
 
 namespace mechsim::launch {
 
 const RemoteNode& AgentNodeHost::planned(const std::string& node) const {
-  for (const auto& n : planned_)
-    if (std::find(n.members.begin(), n.members.end(), node) != n.members.end()) return n;
+  if (const RemoteNode* n = process_running(planned_, node)) return *n;
   throw std::logic_error("no agent's process runs node '" + node + "'");
 }
 
-std::vector<std::string> AgentNodeHost::nodes() const {
-  std::vector<std::string> out;
-  for (const auto& n : planned_) out.insert(out.end(), n.members.begin(), n.members.end());
-  return out;
-}
+std::vector<std::string> AgentNodeHost::nodes() const { return nodes_of(planned_); }
 
 void AgentNodeHost::start_all() {
   for (const auto& n : planned_) processes_.start_remote(n.name, n.address, n.request, agents_);
 }
 
-std::vector<cosim::NodeExit> AgentNodeHost::poll() {
-  std::vector<cosim::NodeExit> out;
-  for (const hostrun::NodeProcess* p : processes_.poll())
-    for (const auto& n : planned_)
-      if (n.name == p->name)
-        for (const auto& member : n.members) out.push_back(cosim::node_exit(member, p->exit_code, p->signalled));
-  return out;
-}
+std::vector<cosim::NodeExit> AgentNodeHost::poll() { return node_exits(planned_, processes_.poll()); }
 
 std::string AgentNodeHost::placement(const std::string& node) const {
-  for (const auto& n : planned_)
-    if (std::find(n.members.begin(), n.members.end(), node) != n.members.end()) return "on host " + n.host + " (" + n.address + ")";
-  return {};
+  const RemoteNode* n = process_running(planned_, node);
+  return n ? "on host " + n->host + " (" + n->address + ")" : std::string();
 }
+
 void AgentNodeHost::request_stop() {
   if (processes_.all_exited()) return;
   agents_.stop_all();

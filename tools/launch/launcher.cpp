@@ -11,6 +11,7 @@
 #include <fstream>
 #include <map>
 #include <random>
+#include <string_view>
 
 #include "agent_client.h"
 #include "agent_protocol.h"
@@ -443,8 +444,9 @@ static void set_on_loaded_scene(config::Scene& scene, const std::string& overrid
   scene.root.set_override(key, value);
   if (key == "dds.vendor") {
     scene.vendor = value;
-  } else if (key.starts_with("participants.") && key.ends_with(".process")) {
-    const std::string name = key.substr(13, key.size() - 13 - 8);
+  } else if (constexpr std::string_view prefix = "participants.", suffix = ".process";
+             key.starts_with(prefix) && key.ends_with(suffix)) {
+    const std::string name = key.substr(prefix.size(), key.size() - prefix.size() - suffix.size());
     for (auto& p : scene.participants)
       if (p.name == name) p.process = value;
   } else if (key == "faults.redundant_samples" && value == "true") {

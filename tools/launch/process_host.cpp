@@ -2,33 +2,22 @@
 
 #include <stdexcept>
 
+#include "process_members.h"
+
 namespace mechsim::launch {
 
 const LocalProcess& ProcessNodeHost::planned(const std::string& node) const {
-  for (const auto& p : planned_)
-    for (const auto& m : p.members)
-      if (m == node) return p;
+  if (const LocalProcess* p = process_running(planned_, node)) return *p;
   throw std::logic_error("no node process runs node '" + node + "'");
 }
 
-std::vector<std::string> ProcessNodeHost::nodes() const {
-  std::vector<std::string> out;
-  for (const auto& p : planned_) out.insert(out.end(), p.members.begin(), p.members.end());
-  return out;
-}
+std::vector<std::string> ProcessNodeHost::nodes() const { return nodes_of(planned_); }
 
 void ProcessNodeHost::start_all() {
   for (const auto& p : planned_) processes_.start(p.name, p.executable, p.args, p.log_path, p.environment);
 }
 
-std::vector<cosim::NodeExit> ProcessNodeHost::poll() {
-  std::vector<cosim::NodeExit> out;
-  for (const hostrun::NodeProcess* p : processes_.poll())
-    for (const auto& planned : planned_)
-      if (planned.name == p->name)
-        for (const auto& member : planned.members) out.push_back(cosim::node_exit(member, p->exit_code, p->signalled));
-  return out;
-}
+std::vector<cosim::NodeExit> ProcessNodeHost::poll() { return node_exits(planned_, processes_.poll()); }
 
 bool ProcessNodeHost::exited(const std::string& node) const {
   return processes_.find(planned(node).name).exited;

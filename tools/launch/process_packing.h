@@ -21,8 +21,9 @@ struct PackedParticipant {
   std::string group;
 };
 
-// The process groups that lay the scene out as its `processes:` asks, `cores` being the launcher's host's (taken for every host: the launcher cannot see
-// the others'; `processes: N` says it for all); none for per_participant. Packed are the
+// The process groups that lay the scene out as its `processes:` asks, `cores` being the
+// launcher's host's (taken for every host: the launcher cannot see the others';
+// `processes: N` says it for all); none for per_participant. Packed are the
 // participants without `process:` or a `realtime:` of their own; each host and DDS vendor
 // gets its own groups (`auto_<vendor>_<i>` on the launcher's host, `auto_<host>_<vendor>_<i>`
 // on another, i from 1), the participants of one restart policy together, and neighbours
