@@ -134,7 +134,7 @@ class ToolReaderTracker final : public dds::DomainParticipantListener {
 };
 
 // The DDS entities of one DomainParticipant: one per FastParticipant, or one for every
-// member of a process group (create_shared_participant, backends.h), each member then
+// member of a process group (create_group_member_participant, backends.h), each member then
 // keeping its own waitset (FastCore).
 struct FastDomainParticipant {
   ToolReaderTracker tool_readers;  // the participant's listener: outlives the participant
