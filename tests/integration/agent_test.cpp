@@ -12,7 +12,7 @@
 #include <thread>
 
 #include "agent_client.h"
-#include "domain_lock.h"
+#include "mechsim/transport/domain_lock.h"
 #include "mechsim/config/scene.h"
 #include "mechsim/transport/backends.h"
 #include "run_command.h"
@@ -24,7 +24,7 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 TEST(Agent, RefusesAnythingButAMechsimNodeOfItsDomain) {
-  launch::DomainLock domain = launch::DomainLock::acquire();
+  transport::DomainLock domain = transport::DomainLock::acquire();
   const fs::path dir = fs::temp_directory_path() / ("mechsim-agent-test-" + std::to_string(::getpid()));
   fs::create_directories(dir);
   ::setenv("CYCLONEDDS_URI", "file://" MECHSIM_SOURCE_DIR "/config/dds/cyclonedds-loopback.xml", 1);
@@ -70,7 +70,7 @@ TEST(Agent, RefusesAnythingButAMechsimNodeOfItsDomain) {
 // back (then remove) each other's node files: the second is refused, naming the folder and
 // the agent holding it; once the first has stopped, the folder is free again.
 TEST(Agent, ASecondAgentOnAWorkFolderInUseIsRefused) {
-  launch::DomainLock domain = launch::DomainLock::acquire();
+  transport::DomainLock domain = transport::DomainLock::acquire();
   const fs::path dir = fs::temp_directory_path() / ("mechsim-agent-lock-test-" + std::to_string(::getpid()));
   fs::create_directories(dir);
   ::setenv("CYCLONEDDS_URI", "file://" MECHSIM_SOURCE_DIR "/config/dds/cyclonedds-loopback.xml", 1);

@@ -26,7 +26,7 @@
 #include <sstream>
 #include <thread>
 
-#include "domain_lock.h"
+#include "mechsim/transport/domain_lock.h"
 #include "mechsim/config/scene.h"
 #include "mechsim/cosim/inproc_run.h"
 #include "mechsim/transport/backends.h"
@@ -81,7 +81,7 @@ class Seam : public ::testing::TestWithParam<VendorPair> {
     // The launcher's loopback configuration (Fast DDS reads it once per process).
     ::setenv("CYCLONEDDS_URI", "file://" MECHSIM_SOURCE_DIR "/config/dds/cyclonedds-loopback.xml", 1);
     ::setenv("FASTRTPS_DEFAULT_PROFILES_FILE", MECHSIM_SOURCE_DIR "/config/dds/fastdds-shm.xml", 1);
-    lock_.emplace(launch::DomainLock::acquire());
+    lock_.emplace(transport::DomainLock::acquire());
     a_ = transport::create_participant(GetParam().writer, lock_->domain_id());
     b_ = transport::create_participant(GetParam().reader, lock_->domain_id());
   }
@@ -89,7 +89,7 @@ class Seam : public ::testing::TestWithParam<VendorPair> {
     a_.reset();
     b_.reset();
   }
-  std::optional<launch::DomainLock> lock_;
+  std::optional<transport::DomainLock> lock_;
   std::unique_ptr<transport::Participant> a_, b_;
 };
 

@@ -13,7 +13,7 @@
 #include <numbers>
 #include <string>
 
-#include "domain_lock.h"
+#include "mechsim/transport/domain_lock.h"
 #include "mechsim/cosim/output_log.h"
 #include "run_fixture.h"
 
@@ -105,7 +105,7 @@ TEST_F(FmuParticipants, FmuOutputsCrossVendorsUnchanged) {
 // --scene: the FMU's names; without: reals[i]), and the launcher's recording, whose
 // FmuOutputs channels carry them as "mechsim.fields" metadata (bag info, bag export).
 TEST_F(FmuParticipants, EchoAndTheRecordingNameTheVariables) {
-  const launch::DomainLock domain = launch::DomainLock::acquire();
+  const transport::DomainLock domain = transport::DomainLock::acquire();
   const std::string path = scene();
   // Paced at real time for 3 s, so that the echoes find the writers while they run.
   const pid_t launcher = spawn(launch_args(path, "rec", {"--set", "dds.domain=" + std::to_string(domain.domain_id()), "--set",

@@ -13,7 +13,7 @@
 #include <thread>
 #include <vector>
 
-#include "domain_lock.h"
+#include "mechsim/transport/domain_lock.h"
 #include "mechsim/transport/backends.h"
 #include "run_command.h"
 
@@ -25,7 +25,7 @@ namespace fs = std::filesystem;
 // nc_slide_loop for 60 s of simulated time on a domain of its own, as an outsider would find
 // it running; the launcher's loopback configuration for this process too.
 struct RunningScene {
-  launch::DomainLock domain = launch::DomainLock::acquire();
+  transport::DomainLock domain = transport::DomainLock::acquire();
   fs::path dir;
   pid_t launcher = -1;
   explicit RunningScene(const std::string& tag, const std::string& vendor = "cyclone")

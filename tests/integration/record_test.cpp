@@ -20,7 +20,7 @@
 #include <sstream>
 #include <thread>
 
-#include "domain_lock.h"
+#include "mechsim/transport/domain_lock.h"
 #include "mechsim/cosim/output_log.h"
 #include "mechsim/record/mcap_reader.h"
 #include "npm_reader.h"
@@ -122,7 +122,7 @@ class Record : public ::testing::Test {
   }
 
   fs::path dir_;
-  launch::DomainLock domain_ = launch::DomainLock::acquire();
+  transport::DomainLock domain_ = transport::DomainLock::acquire();
 };
 
 TEST_F(Record, RecordsEveryStepOfARunAndExportsExactlyTheNodesOutputs) {
@@ -232,8 +232,9 @@ TEST_F(Record, RecordsEveryStepOfARunAndExportsExactlyTheNodesOutputs) {
       if (col < 0) continue;  // a topic field the block does not output (none for these types)
       ++compared;
       for (std::size_t r = 0; r < log.rows(); ++r)
-        if (!event_times.count(log.data[0][r]) || std::string(node) == "follower")  // Gauss-Seidel fed: equal
+        if (!event_times.count(log.data[0][r]) || std::string(node) == "follower") {  // Gauss-Seidel fed: equal
           ASSERT_EQ(std::strtod(rows[r + 1][c].c_str(), nullptr), log.data[col][r]) << header[c] << " row " << r;
+        }
     }
     EXPECT_EQ(compared, static_cast<int>(header.size()) - 3) << "every topic field is a block output";
     for (std::size_t r = 0; r < log.rows(); ++r) {

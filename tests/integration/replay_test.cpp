@@ -13,7 +13,7 @@
 #include <filesystem>
 #include <map>
 
-#include "domain_lock.h"
+#include "mechsim/transport/domain_lock.h"
 #include "mechsim/record/mcap_reader.h"
 #include "cdr_decoder.h"
 #include "player.h"
@@ -179,7 +179,7 @@ TEST_F(ReplayTest, APlayedRecordingRecordsAgainToTheSameBytes) {
   ASSERT_EQ(recorded.size(), 2u);
 
   // Played unpaced onto a domain of our own and recorded there again (both in-process).
-  launch::DomainLock domain = launch::DomainLock::acquire();
+  transport::DomainLock domain = transport::DomainLock::acquire();
   ::setenv("CYCLONEDDS_URI", "file://" MECHSIM_SOURCE_DIR "/config/dds/cyclonedds-loopback.xml", 1);
   auto again_file = (dir_ / "again.mcap").string();
   recorder::RecordOptions ro;

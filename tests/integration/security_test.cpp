@@ -25,7 +25,7 @@
 #include <optional>
 #include <set>
 
-#include "domain_lock.h"
+#include "mechsim/transport/domain_lock.h"
 #include "mechsim/config/scene.h"
 #include "mechsim/cosim/scene_plan.h"
 #include "security_init.h"
@@ -234,7 +234,7 @@ TEST_F(Security, ParticipantsWithoutAValidIdentitySeeNothingAndChangeNothing) {
   if (!compiled_in("cyclone")) GTEST_SKIP() << "the outsiders are Cyclone DDS participants";
   run_plain();
   if (HasFatalFailure()) return;
-  launch::DomainLock domain = launch::DomainLock::acquire();
+  transport::DomainLock domain = transport::DomainLock::acquire();
   // Another CA's "servo": a well-formed identity with the permissions of the run's own
   // servo, which the run's CA did not sign.
   auto foreign = transport::create_participant("cyclone", domain.domain_id(), transport::SecurityIdentity{other(), "servo"});
@@ -263,7 +263,7 @@ TEST_F(Security, AnUnsecuredParticipantSeesNothingAndChangesNothing) {
   if (!compiled_in("cyclone")) GTEST_SKIP() << "the outsider is a Cyclone DDS participant";
   run_plain();
   if (HasFatalFailure()) return;
-  launch::DomainLock domain = launch::DomainLock::acquire();
+  transport::DomainLock domain = transport::DomainLock::acquire();
   auto unsecured = transport::create_participant("cyclone", domain.domain_id(), std::nullopt);
   const pid_t launcher = spawn_secured(domain.domain_id());
   std::atomic<bool> stop{false};
@@ -310,7 +310,7 @@ class Permissions : public Security, public ::testing::WithParamInterface<std::s
 TEST_P(Permissions, AValidParticipantIsRefusedTopicsItsPermissionsLack) {
   const std::string vendor = GetParam();
   if (!compiled_in(vendor)) GTEST_SKIP() << vendor << " is not in this build";
-  launch::DomainLock domain = launch::DomainLock::acquire();
+  transport::DomainLock domain = transport::DomainLock::acquire();
   auto servo = transport::create_participant(vendor, domain.domain_id(), transport::SecurityIdentity{sec(), "servo"});
   const transport::TopicType* command = transport::find_topic_type("ServoCommand");
   const transport::TopicType* slide = transport::find_topic_type("SlideState");
@@ -373,7 +373,7 @@ int directions_across_vendors(const std::string& on_cyclone, const std::string& 
 TEST_F(Security, CycloneAndFastDdsInteroperateSecuredOnlyWhenCycloneStartsTheHandshake) {
   if (!compiled_in("cyclone") || !compiled_in("fastdds")) GTEST_SKIP() << "needs both vendors";
   for (const auto& [on_cyclone, on_fastdds] : {std::pair{"servo", "tacho"}, std::pair{"tacho", "servo"}}) {
-    launch::DomainLock domain = launch::DomainLock::acquire();
+    transport::DomainLock domain = transport::DomainLock::acquire();
     EXPECT_EQ(directions_across_vendors(on_cyclone, on_fastdds, false, domain.domain_id(), std::chrono::seconds(10)), 2)
         << "unsecured, " << on_cyclone << " on Cyclone and " << on_fastdds << " on Fast DDS must talk both ways";
   }
@@ -384,10 +384,10 @@ TEST_F(Security, CycloneAndFastDdsInteroperateSecuredOnlyWhenCycloneStartsTheHan
   // whose public key Cyclone cannot decode ("Failed to convert octet sequence to ASN1
   // integer"): nothing arrives, either way.
   {
-    launch::DomainLock domain = launch::DomainLock::acquire();
+    transport::DomainLock domain = transport::DomainLock::acquire();
     EXPECT_EQ(directions_across_vendors("servo", "tacho", true, domain.domain_id(), std::chrono::seconds(10)), 2);
   }
-  launch::DomainLock domain = launch::DomainLock::acquire();
+  transport::DomainLock domain = transport::DomainLock::acquire();
   EXPECT_EQ(directions_across_vendors("tacho", "servo", true, domain.domain_id(), std::chrono::seconds(10)), 0);
 }
 
@@ -544,7 +544,7 @@ TEST_F(Security, ASignedRunAdmitsNoOutsider) {
   if (!compiled_in("cyclone")) GTEST_SKIP() << "the outsider is a Cyclone DDS participant";
   const CommandResult plain = run(run_args("plain", "cyclone", false, {"--end", "0.3 s"}), log("plain"));
   ASSERT_EQ(plain.exit_code, 0) << plain.output;
-  launch::DomainLock domain = launch::DomainLock::acquire();
+  transport::DomainLock domain = transport::DomainLock::acquire();
   auto unsecured = transport::create_participant("cyclone", domain.domain_id(), std::nullopt);
   std::atomic<bool> done{false};
   std::atomic<int> forged{0};
@@ -648,7 +648,7 @@ TEST_F(Security, ADomainOutsideTheGovernanceIsRefusedBeforeAnythingStarts) {
       << twelve.output;
   const CommandResult picked = run({kMechsim, "check", kScene, "--set", "dds.security=" + narrow.string()}, log("narrow-auto"), 30);
   EXPECT_EQ(picked.exit_code, 2) << picked.output;
-  EXPECT_NE(picked.output.find("covers domains 5..9, not every domain the launcher may pick (1..230, e.g. 1); expected "
+  EXPECT_NE(picked.output.find("covers domains 5..9, not every domain the launcher may pick (in 1..230, e.g. 1); expected "
                                "dds.domain fixed to one of 5..9"),
             std::string::npos)
       << picked.output;

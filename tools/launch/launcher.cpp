@@ -15,7 +15,7 @@
 
 #include "agent_client.h"
 #include "agent_protocol.h"
-#include "domain_lock.h"
+#include "mechsim/transport/domain_lock.h"
 #include "domain_readers.h"
 #include "hosts.h"
 #include "mechsim/config/scene.h"
@@ -78,7 +78,7 @@ class Run {
   std::uint64_t run_id_ = 0;
   std::string run_dir_;
   int domain_ = 0;
-  std::optional<DomainLock> domain_lock_;  // held until the run ends (a domain the scene does not fix)
+  std::optional<transport::DomainLock> domain_lock_;  // held until the run ends (a domain the scene does not fix)
   std::unique_ptr<transport::Participant> participant_;
   std::unique_ptr<transport::ControlWriter> control_;
   std::unique_ptr<transport::StatusReader> status_;
@@ -328,7 +328,7 @@ int Run::connect() {
   if (scene_.domain_id) {
     domain_ = *scene_.domain_id;
   } else {
-    domain_lock_.emplace(DomainLock::acquire());
+    domain_lock_.emplace(transport::DomainLock::acquire());
     domain_ = domain_lock_->domain_id();
   }
   if (hosts_.multi_host) {

@@ -3,8 +3,8 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "domain_lock.h"
 #include "hosts.h"
+#include "mechsim/transport/domain_lock.h"
 #include "mechsim/transport/security.h"
 
 namespace mechsim::launch {
@@ -49,13 +49,14 @@ std::vector<std::string> security_problems(const config::Scene& scene) {
           problems.push_back(scene.file + ": dds.domain: " + std::to_string(*scene.domain_id) +
                              " is not a domain the governance covers (" + covered + ", read from " + governance +
                              "); expected a domain in " + covered + ", or no dds.domain (the launcher picks a free one in " +
-                             std::to_string(kFirstFreeDomain) + ".." + std::to_string(kLastFreeDomain) + ")");
+                             std::to_string(transport::kFirstFreeDomain) + ".." + std::to_string(transport::kLastFreeDomain) +
+                             ")");
       } else {
-        for (int d = kFirstFreeDomain; d <= kLastFreeDomain; ++d)
+        for (int d : transport::pickable_domains())
           if (!transport::covers(ranges, d)) {
             problems.push_back(scene.file + ": dds.security: the governance " + governance + " covers domains " + covered +
-                               ", not every domain the launcher may pick (" + std::to_string(kFirstFreeDomain) + ".." +
-                               std::to_string(kLastFreeDomain) + ", e.g. " + std::to_string(d) +
+                               ", not every domain the launcher may pick (in " + std::to_string(transport::kFirstFreeDomain) +
+                               ".." + std::to_string(transport::kLastFreeDomain) + ", e.g. " + std::to_string(d) +
                                "); expected dds.domain fixed to one of " + covered);
             break;
           }

@@ -11,7 +11,7 @@
 #include <optional>
 
 #include "cdr_decoder.h"
-#include "domain_lock.h"
+#include "mechsim/transport/domain_lock.h"
 #include "mechsim/transport/backends.h"
 #include "mechsim/transport/raw.h"
 
@@ -38,7 +38,7 @@ class RawCdr : public ::testing::Test {
   std::string topic(const std::string& what) const { return "rawtest" + std::to_string(::getpid()) + "/" + what; }
 
   // A domain of its own for this test process (the launcher's flock scheme).
-  launch::DomainLock domain_ = launch::DomainLock::acquire();
+  transport::DomainLock domain_ = transport::DomainLock::acquire();
   std::unique_ptr<transport::Participant> typed_;
   std::unique_ptr<transport::RawParticipant> raw_;
 };

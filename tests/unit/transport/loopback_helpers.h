@@ -2,18 +2,20 @@
 // and waiting on a participant until a condition holds.
 #pragma once
 
-#include <unistd.h>
-
 #include <chrono>
 #include <functional>
 
+#include "mechsim/transport/domain_lock.h"
 #include "mechsim/transport/participant.h"
 
 namespace mechsim::transport::testing {
 
-// A domain id of its own per test process (tests run in parallel): 200 + pid % 30 is
-// outside what most launcher runs pick first, and runs are isolated by run id anyway.
-inline int test_domain() { return 200 + static_cast<int>(::getpid() % 30); }
+// A domain id of its own per test process (tests run in parallel, launcher runs beside
+// them): the launcher's lock, held until the process ends, so no other test or run takes it.
+inline int test_domain() {
+  static const DomainLock lock = DomainLock::acquire();
+  return lock.domain_id();
+}
 
 // Waits on `p` (up to 5 s) until `done` holds; returns whether it did.
 inline bool wait_until(Participant& p, const std::function<bool()>& done) {
