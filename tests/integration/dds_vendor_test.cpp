@@ -542,19 +542,24 @@ TEST_F(VendorRuns, EveryShippedSceneIsBitIdenticalOnEveryLayout) {
     }
     std::vector<std::string> tags;
     json first;
-    for (const std::string layout : {"cyclone", "fastdds", "mixed"}) {
-      const std::string t = tag + "_" + layout;
-      // Real-time scenes run in lock step here: the numbers do not depend on the pacing.
-      CommandResult r = run(args(rel, t, {"--dds", layout, "--mode", "lockstep"}), log(t), 300);
-      ASSERT_EQ(r.exit_code, 0) << r.output;
-      if (first.is_null()) first = summary(t);
-      tags.push_back(t);
-    }
+    // Each vendor layout with a process per participant and with every participant of a
+    // vendor in one process, stepped by one executor thread with in-memory hand-off
+    // (processes: 1; docs/node-loop.md "One executor per process").
+    for (const std::string layout : {"cyclone", "fastdds", "mixed"})
+      for (const std::string processes : {"per_participant", "1"}) {
+        const std::string t = tag + "_" + layout + "_" + (processes == "1" ? "one" : "each");
+        // Real-time scenes run in lock step here: the numbers do not depend on the pacing.
+        CommandResult r = run(args(rel, t, {"--dds", layout, "--mode", "lockstep", "--set", "processes=" + processes}), log(t), 300);
+        ASSERT_EQ(r.exit_code, 0) << r.output;
+        if (first.is_null()) first = summary(t);
+        tags.push_back(t);
+      }
     expect_identical_outputs(tags, first);
     ++launched;
-    if (!HasFailure()) fs::remove_all(dir_ / tags[0]), fs::remove_all(dir_ / tags[1]), fs::remove_all(dir_ / tags[2]);
+    if (!HasFailure())
+      for (const auto& t : tags) fs::remove_all(dir_ / t);
   }
-  std::cout << "[ interop ] " << launched << " scenes bit-identical on cyclone, fastdds and mixed\n";
+  std::cout << "[ interop ] " << launched << " scenes bit-identical on cyclone, fastdds and mixed, a process each and one per vendor\n";
   EXPECT_GE(launched, 10);
 }
 

@@ -6,6 +6,7 @@
 #include <memory>
 #include <optional>
 #include <stdexcept>
+#include <thread>
 #include <utility>
 
 #include "mechsim/cosim/checkpoint.h"
@@ -46,24 +47,39 @@ std::optional<NodeCheckpoint> checkpoint_to_resume(const NodeRunOptions& options
   return read_checkpoint(options.run_dir, node, *options.resume_step);
 }
 
+}  // namespace
+
+// The loop's parts and its phases (awaiting start, running, awaiting resume, ended); only
+// NodeRun drives it. Not in the anonymous namespace: NodeRun::Impl holds one.
 class NodeLoop {
  public:
   NodeLoop(ScenePlan& plan, const std::string& name, transport::Participant& participant, const NodeRunOptions& options,
            NodeStatus& status);
-  // node_exit_code::done or ::stopped; throws on failure.
-  int run();
+  // One pass that never blocks: returns ended with the exit code in exit_code();
+  // throws on failure.
+  NodeRun::Pass advance();
+  void wait(std::chrono::nanoseconds longest);
+  bool running() const { return phase_ == Phase::running; }
+  // node_exit_code::done or ::stopped.
+  int exit_code() const { return exit_code_; }
 
  private:
+  enum class Phase { awaiting_start, running, awaiting_resume, ended };
   void add_observers();
   bool stop_requested() const { return options_.stop_requested && options_.stop_requested->load(); }
+  NodeRun::Pass await_start();
+  NodeRun::Pass step_while_possible();
+  NodeRun::Pass await_resume();
+  NodeRun::Pass end(int code);
+  void begin_running();
   void initialise();
   void take_step();
   void publish();
   void notify_observers(bool initial);
   void predict_if_due();
   bool take_commands();
-  void wait_for_samples();
-  bool roll_back(const transport::ControlMessage& command);
+  void before_waiting();
+  void roll_back(const transport::ControlMessage& command);
   void restore(const NodeCheckpoint& c);
   void go_on_after_rollback();
   NodeCheckpoint checkpoint_now();
@@ -90,6 +106,10 @@ class NodeLoop {
   std::int32_t generation_;
   const bool gauss_seidel_input_;
   bool initialised_ = false;
+  Phase phase_ = Phase::awaiting_start;
+  int exit_code_ = node_exit_code::stopped;
+  std::optional<StartWait> start_wait_;
+  std::optional<ResumeWait> resume_wait_;
   transport::SampleHeader header_;
   std::vector<double> values_, prediction_, proposal_fields_;
   std::optional<transport::ControlMessage> pending_rollback_;
@@ -116,6 +136,13 @@ NodeLoop::NodeLoop(ScenePlan& plan, const std::string& name, transport::Particip
       gauss_seidel_input_(has_gauss_seidel_input(node_)),
       header_{options.run_id, 0, scene_.time.start} {
   add_observers();
+  // A resumed node waits for the resume of its generation instead of the start.
+  if (resumed_) {
+    status_.at_step(resumed_->stepper.step, 0.0);
+    status_.rolled_back(resumed_->stepper.step, generation_);
+  }
+  start_wait_.emplace(io_, control_, status_, resumed_ ? transport::ControlCommand::resume : transport::ControlCommand::start,
+                      generation_, options_.start_timeout_s);
 }
 
 // In this order: each step's rows, its events, the status, then the checkpoint of them all.
@@ -140,44 +167,91 @@ void NodeLoop::add_observers() {
         [this] { return checkpoint_now(); }, options_.checkpoint_pause_step, options_.checkpoint_pause_s));
 }
 
-int NodeLoop::run() {
-  // A resumed node waits for the resume of its generation instead of the start.
-  if (resumed_) {
-    status_.at_step(resumed_->stepper.step, 0.0);
-    status_.rolled_back(resumed_->stepper.step, generation_);
+NodeRun::Pass NodeLoop::advance() {
+  // A running node takes the steps it can before it looks at a stop (step_while_possible).
+  if (phase_ != Phase::ended && phase_ != Phase::running && stop_requested()) return end(node_exit_code::stopped);
+  switch (phase_) {
+    case Phase::awaiting_start: return await_start();
+    case Phase::running: return step_while_possible();
+    case Phase::awaiting_resume: return await_resume();
+    case Phase::ended: break;
   }
-  const auto start = await_start(io_, control_, status_, resumed_ ? transport::ControlCommand::resume : transport::ControlCommand::start,
-                                 generation_, options_.start_timeout_s, options_.stop_requested);
-  if (!start) return node_exit_code::stopped;
+  return NodeRun::Pass::ended;
+}
+
+NodeRun::Pass NodeLoop::end(int code) {
+  phase_ = Phase::ended;
+  exit_code_ = code;
+  return NodeRun::Pass::ended;
+}
+
+NodeRun::Pass NodeLoop::await_start() {
+  switch (start_wait_->poll()) {
+    case StartWait::Outcome::waiting: return NodeRun::Pass::idle;
+    case StartWait::Outcome::ended: return end(node_exit_code::stopped);
+    case StartWait::Outcome::started: break;
+  }
+  begin_running();
+  return NodeRun::Pass::progressed;
+}
+
+void NodeLoop::begin_running() {
   status_.resumed();
   status_.set_state(transport::NodeState::running);
-  pacing_.emplace(plan_, *start);
+  pacing_.emplace(plan_, start_wait_->start());
+  start_wait_.reset();
+  phase_ = Phase::running;
   if (resumed_) {
     restore(*resumed_);
     std::printf("resumed: from step %llu (generation %d)\n", static_cast<unsigned long long>(header_.step), generation_);
     go_on_after_rollback();
   }
-  for (;;) {
-    gate_.drain();
-    if (!gate_.hold() && !initialised_ && stepper_.can_initialise()) initialise();
-    predict_if_due();
-    while (initialised_ && stepper_.can_step() && !gate_.holding()) {  // a drain below may start a hold
-      take_step();
-      if (stepper_.finished()) break;
-      gate_.drain();
-      predict_if_due();
-      status_.tick();
-    }
-    if (stepper_.finished()) break;
-    if (stop_requested() || take_commands()) return node_exit_code::stopped;
-    if (pending_rollback_) {
-      if (!roll_back(*std::exchange(pending_rollback_, std::nullopt))) return node_exit_code::stopped;
-      continue;
-    }
-    wait_for_samples();
+}
+
+// Drain, initialise, step while the inputs allow, then the commands; before an idle pass
+// ends, what the node does before it waits (partition watch, resend, heartbeat).
+NodeRun::Pass NodeLoop::step_while_possible() {
+  bool progressed = false;
+  gate_.drain();
+  if (!gate_.hold() && !initialised_ && stepper_.can_initialise()) {
+    initialise();
+    progressed = true;
   }
-  finish();
-  return node_exit_code::done;
+  predict_if_due();
+  while (initialised_ && stepper_.can_step() && !gate_.holding()) {  // a drain below may start a hold
+    take_step();
+    progressed = true;
+    if (stepper_.finished()) break;
+    gate_.drain();
+    predict_if_due();
+    status_.tick();
+  }
+  if (stepper_.finished()) {
+    finish();
+    return end(node_exit_code::done);
+  }
+  if (stop_requested() || take_commands()) return end(node_exit_code::stopped);
+  if (pending_rollback_) {
+    roll_back(*std::exchange(pending_rollback_, std::nullopt));
+    return NodeRun::Pass::progressed;
+  }
+  if (progressed) return NodeRun::Pass::progressed;
+  before_waiting();
+  return NodeRun::Pass::idle;
+}
+
+NodeRun::Pass NodeLoop::await_resume() {
+  switch (resume_wait_->poll()) {
+    case ResumeWait::Outcome::waiting: return NodeRun::Pass::idle;
+    case ResumeWait::Outcome::ended: return end(node_exit_code::stopped);
+    case ResumeWait::Outcome::resumed: break;
+  }
+  resume_wait_.reset();
+  status_.resumed();
+  status_.set_state(transport::NodeState::running);
+  phase_ = Phase::running;
+  go_on_after_rollback();
+  return NodeRun::Pass::progressed;
 }
 
 void NodeLoop::initialise() {
@@ -240,35 +314,41 @@ bool NodeLoop::take_commands() {
   return false;
 }
 
-void NodeLoop::wait_for_samples() {
+void NodeLoop::before_waiting() {
   if (gate_.holding()) partition_.excuse();  // a hold is not a partition
   partition_.check(stepper_, initialised_, rollback_.within_after_resume(RollbackSession::kForeignWriterGrace));
   rollback_.resend_if_stalled(stepper_.step());
   status_.copy_stats(stepper_.solver_stats());
   pacing_->report(status_);
   status_.tick();
+}
+
+void NodeLoop::wait(std::chrono::nanoseconds longest) {
+  if (phase_ == Phase::awaiting_start) return std::this_thread::sleep_for(std::min(start_wait_->nap(), longest));
+  if (phase_ == Phase::awaiting_resume) return std::this_thread::sleep_for(std::min(resume_wait_->nap(), longest));
+  if (phase_ != Phase::running) return;
   // A node with a Gauss-Seidel input waits for its partners' next step (due at the deadline
   // of the step it publishes next); otherwise for samples of the step it has just published.
   const std::uint64_t awaited = stepper_.step() + (initialised_ && gauss_seidel_input_ ? 1 : 0);
-  pacing_->wait_for_samples(participant_, status_, awaited, [this] {
-    gate_.drain();
-    predict_if_due();
-    return initialised_ ? stepper_.can_step() : stepper_.can_initialise();
-  });
+  pacing_->wait_for_samples(
+      participant_, status_, awaited,
+      [this] {
+        gate_.drain();
+        predict_if_due();
+        return initialised_ ? stepper_.can_step() : stepper_.can_initialise();
+      },
+      longest);
 }
 
 // Back to the checkpoint the launcher names, then wait for its resume (docs/faults.md).
-bool NodeLoop::roll_back(const transport::ControlMessage& command) {
+void NodeLoop::roll_back(const transport::ControlMessage& command) {
   restore(read_checkpoint(options_.run_dir, name_, command.step));
   generation_ = command.generation;
   std::printf("rollback: to step %llu (generation %d)\n", static_cast<unsigned long long>(command.step), generation_);
   status_.rolled_back(command.step, generation_);
   status_.set_state(transport::NodeState::ready);
-  if (!await_resume(control_, status_, generation_, options_.stop_requested)) return false;
-  status_.resumed();
-  status_.set_state(transport::NodeState::running);
-  go_on_after_rollback();
-  return true;
+  resume_wait_.emplace(control_, status_, generation_);
+  phase_ = Phase::awaiting_resume;
 }
 
 // Back to a checkpoint's step: the outputs written after it are cut off, so the run folder
@@ -307,6 +387,8 @@ void NodeLoop::finish() {
               status_.elapsed());
 }
 
+namespace {
+
 int fail(const std::string& node, NodeStatus& status, transport::NodeError error, const char* what, bool lose_status) {
   std::fprintf(stderr, "%s: error: %s\n", node.c_str(), what);
   if (!lose_status) status.failed(error, what);
@@ -315,17 +397,67 @@ int fail(const std::string& node, NodeStatus& status, transport::NodeError error
 
 }  // namespace
 
+struct NodeRun::Impl {
+  Impl(ScenePlan& plan, const std::string& node_name, transport::Participant& participant, const NodeRunOptions& options)
+      : name(node_name), options(options), status(participant, node_name, options.run_id, options.generation, options.heartbeat_s) {
+    guarded([&] {
+      status.set_state(transport::NodeState::starting);
+      loop.emplace(plan, node_name, participant, options, status);
+    });
+  }
+  // Runs `f`; a failure ends the run with its exit code, as a node process that fails.
+  template <class F>
+  void guarded(F&& f) {
+    try {
+      f();
+      return;
+    } catch (const NodeFailure& e) {
+      code = fail(name, status, e.kind(), e.what(), options.lose_failed_status);
+    } catch (const std::exception& e) {
+      code = fail(name, status, transport::NodeError::other, e.what(), options.lose_failed_status);
+    }
+    loop.reset();
+  }
+
+  const std::string name;
+  const NodeRunOptions& options;
+  NodeStatus status;
+  std::optional<NodeLoop> loop;
+  std::optional<int> code;  // once ended
+};
+
+NodeRun::NodeRun(ScenePlan& plan, const std::string& node_name, transport::Participant& participant, const NodeRunOptions& options)
+    : impl_(std::make_unique<Impl>(plan, node_name, participant, options)) {}
+
+NodeRun::~NodeRun() = default;
+
+NodeRun::Pass NodeRun::advance() {
+  Impl& r = *impl_;
+  if (r.code) return Pass::ended;
+  Pass pass = Pass::ended;
+  r.guarded([&] {
+    pass = r.loop->advance();
+    if (pass == Pass::ended) r.code = r.loop->exit_code();
+  });
+  return r.code ? Pass::ended : pass;
+}
+
+void NodeRun::wait(std::chrono::nanoseconds longest) {
+  Impl& r = *impl_;
+  if (!r.code) r.guarded([&] { r.loop->wait(longest); });
+}
+
+bool NodeRun::running() const { return !impl_->code && impl_->loop->running(); }
+
+int NodeRun::exit_code() const { return impl_->code.value_or(node_exit_code::stopped); }
+
 int run_node(ScenePlan& plan, const std::string& node_name, transport::Participant& participant,
              const NodeRunOptions& options) {
-  NodeStatus status(participant, node_name, options.run_id, options.generation, options.heartbeat_s);
-  try {
-    status.set_state(transport::NodeState::starting);
-    NodeLoop loop(plan, node_name, participant, options, status);
-    return loop.run();
-  } catch (const NodeFailure& e) {
-    return fail(node_name, status, e.kind(), e.what(), options.lose_failed_status);
-  } catch (const std::exception& e) {
-    return fail(node_name, status, transport::NodeError::other, e.what(), options.lose_failed_status);
+  NodeRun run(plan, node_name, participant, options);
+  for (;;) {
+    const NodeRun::Pass pass = run.advance();
+    if (pass == NodeRun::Pass::ended) return run.exit_code();
+    if (pass == NodeRun::Pass::idle) run.wait(std::chrono::nanoseconds::max());
   }
 }
 

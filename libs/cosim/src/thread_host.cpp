@@ -1,66 +1,42 @@
 #include "mechsim/cosim/thread_host.h"
 
+#include <set>
 #include <stdexcept>
+
+#include "mechsim/cosim/step_topic.h"
 
 namespace mechsim::cosim {
 
 namespace {
 
-// Cyclone DDS 0.10 crashes when two participants of one process create topics from two
-// threads at the same time (measured): every endpoint of the node threads is created under
-// one lock. Only creation is serialised; samples flow as before.
-std::mutex g_create_mutex;
+// Every data topic the nodes of this executor write: read from memory by the others.
+std::set<std::string> topics_written_by(const std::vector<std::string>& names, const std::vector<const ScenePlan*>& plans) {
+  std::set<std::string> topics;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const PlannedNode& node = plans[i]->node(names[i]);
+    topics.insert(node.topic);
+    if (node.cut) topics.insert(node.cut->topic);
+    if (plans[i]->grid()->is_adaptive()) topics.insert(step_topic(names[i]));
+  }
+  return topics;
+}
 
-class SerialisedParticipant : public transport::Participant {
- public:
-  explicit SerialisedParticipant(std::unique_ptr<transport::Participant> inner) : inner_(std::move(inner)) {}
-  std::unique_ptr<transport::SampleWriter> create_writer(const std::string& topic, const transport::TopicType& type) override {
-    std::lock_guard lock(g_create_mutex);
-    return inner_->create_writer(topic, type);
-  }
-  std::unique_ptr<transport::SampleReader> create_reader(const std::string& topic, const transport::TopicType& type) override {
-    std::lock_guard lock(g_create_mutex);
-    return inner_->create_reader(topic, type);
-  }
-  std::unique_ptr<transport::SampleWriter> create_redundant_writer(const std::string& topic, const transport::TopicType& type) override {
-    std::lock_guard lock(g_create_mutex);
-    return inner_->create_redundant_writer(topic, type);
-  }
-  std::unique_ptr<transport::SampleReader> create_redundant_reader(const std::string& topic, const transport::TopicType& type) override {
-    std::lock_guard lock(g_create_mutex);
-    return inner_->create_redundant_reader(topic, type);
-  }
-  std::unique_ptr<transport::ControlWriter> create_control_writer() override {
-    std::lock_guard lock(g_create_mutex);
-    return inner_->create_control_writer();
-  }
-  std::unique_ptr<transport::ControlReader> create_control_reader() override {
-    std::lock_guard lock(g_create_mutex);
-    return inner_->create_control_reader();
-  }
-  std::unique_ptr<transport::StatusWriter> create_status_writer() override {
-    std::lock_guard lock(g_create_mutex);
-    return inner_->create_status_writer();
-  }
-  std::unique_ptr<transport::StatusReader> create_status_reader() override {
-    std::lock_guard lock(g_create_mutex);
-    return inner_->create_status_reader();
-  }
-  std::unique_ptr<transport::AgentWriter> create_agent_writer(const std::string& topic) override {
-    std::lock_guard lock(g_create_mutex);
-    return inner_->create_agent_writer(topic);
-  }
-  std::unique_ptr<transport::AgentReader> create_agent_reader(const std::string& topic) override {
-    std::lock_guard lock(g_create_mutex);
-    return inner_->create_agent_reader(topic);
-  }
-  bool wait(std::chrono::nanoseconds timeout) override { return inner_->wait(timeout); }
-  void wake() override { inner_->wake(); }
-  std::string vendor() const override { return inner_->vendor(); }
+// Some input of the node (a partner's state or prediction, a step proposal) comes from a
+// participant outside this executor: when it is idle, it waits on its participant.
+bool reads_from_outside(const ScenePlan& plan, const std::string& name, const std::set<std::string>& members) {
+  const PlannedNode& node = plan.node(name);
+  for (const auto& edge : node.inputs)
+    if (!members.count(edge.from)) return true;
+  if (node.cut && !members.count(node.cut->partner)) return true;
+  if (plan.grid()->is_adaptive())
+    for (const auto& other : plan.nodes())
+      if (!members.count(other.name())) return true;
+  return false;
+}
 
- private:
-  std::unique_ptr<transport::Participant> inner_;
-};
+// With several nodes waiting on their own participants, the executor waits on one of them
+// at a time, at most this long, so that a sample for another is taken soon after it came.
+constexpr std::chrono::nanoseconds kShareWait{200'000};
 
 }  // namespace
 
@@ -75,31 +51,65 @@ ThreadNodeHost::~ThreadNodeHost() {
 }
 
 void ThreadNodeHost::start_all() {
+  std::vector<const ScenePlan*> plans;
   for (const auto& name : names_) {
     auto slot = std::make_unique<Slot>();
     slot->name = name;
     slot->parts = make_parts_(name);
-    slot->parts.participant = std::make_unique<SerialisedParticipant>(std::move(slot->parts.participant));
+    slot->options = slot->parts.options.value_or(options_);
+    slot->options.stop_requested = &stop_;
+    plans.push_back(slot->parts.plan.get());
     slots_.push_back(std::move(slot));
   }
-  for (auto& s : slots_) {
-    Slot* slot = s.get();
-    slot->thread = std::thread([this, slot] {
-      int code = 1;
-      try {
-        NodeRunOptions options = slot->parts.options.value_or(options_);
-        options.stop_requested = &stop_;
-        code = run_node(*slot->parts.plan, slot->name, *slot->parts.participant, options);
-      } catch (const std::exception&) {
-        code = 1;  // run_node reports its own errors; this is only a last resort
-      }
-      {
-        std::lock_guard lock(exited_mutex_);
-        slot->exit_code = code;
-      }
-      exited_.notify_all();
-    });
+  handoff_ = std::make_unique<transport::LocalHandoff>(topics_written_by(names_, plans));
+  const std::set<std::string> members(names_.begin(), names_.end());
+  for (auto& slot : slots_) {
+    slot->parts.participant = handoff_->member(std::move(slot->parts.participant));
+    slot->external = reads_from_outside(*slot->parts.plan, slot->name, members);
   }
+  executor_ = std::thread([this] { execute(); });
+}
+
+// The executor: every node's pass in turn, as long as any of them got on; when none did,
+// a wait on the participant of a node that waits for samples from outside (or a nap).
+void ThreadNodeHost::execute() {
+  std::vector<std::unique_ptr<NodeRun>> runs;
+  for (auto& slot : slots_)
+    runs.push_back(std::make_unique<NodeRun>(*slot->parts.plan, slot->name, *slot->parts.participant, slot->options));
+  std::size_t turn = 0;  // which of several outside-waiting nodes is waited on next
+  for (;;) {
+    bool progressed = false;
+    std::vector<std::size_t> live, outside;
+    for (std::size_t i = 0; i < slots_.size(); ++i) {
+      Slot& slot = *slots_[i];
+      if (slot.exit_code >= 0) continue;
+      const NodeRun::Pass pass = runs[i]->advance();
+      if (pass == NodeRun::Pass::ended) {
+        ended(slot, runs[i]->exit_code());
+        continue;
+      }
+      progressed |= pass == NodeRun::Pass::progressed;
+      live.push_back(i);
+      if (slot.external && runs[i]->running()) outside.push_back(i);
+    }
+    if (live.empty()) break;
+    if (progressed) continue;
+    if (outside.empty()) {
+      runs[live.front()]->wait(std::chrono::nanoseconds::max());
+    } else if (outside.size() == 1) {
+      runs[outside.front()]->wait(std::chrono::nanoseconds::max());
+    } else {
+      runs[outside[turn++ % outside.size()]]->wait(kShareWait);
+    }
+  }
+}
+
+void ThreadNodeHost::ended(Slot& slot, int code) {
+  {
+    std::lock_guard lock(exited_mutex_);
+    slot.exit_code = code;
+  }
+  exited_.notify_all();
 }
 
 std::vector<NodeExit> ThreadNodeHost::poll() {
@@ -115,7 +125,7 @@ std::vector<NodeExit> ThreadNodeHost::poll() {
 const ThreadNodeHost::Slot& ThreadNodeHost::slot(const std::string& node) const {
   for (const auto& s : slots_)
     if (s->name == node) return *s;
-  throw std::logic_error("no node thread named '" + node + "'");
+  throw std::logic_error("no node named '" + node + "' on this executor");
 }
 
 bool ThreadNodeHost::exited(const std::string& node) const { return slot(node).exit_code >= 0; }
@@ -137,8 +147,7 @@ void ThreadNodeHost::request_stop() {
 }
 
 void ThreadNodeHost::stop_all(double) {
-  for (auto& slot : slots_)
-    if (slot->thread.joinable()) slot->thread.join();
+  if (executor_.joinable()) executor_.join();
 }
 
 void ThreadNodeHost::wait_for_exit(std::chrono::milliseconds timeout) {

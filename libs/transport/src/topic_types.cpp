@@ -108,4 +108,10 @@ const TopicType* find_topic_type(std::string_view name) {
   return nullptr;
 }
 
+void as_on_the_wire(const TopicType& type, std::vector<double>& values) {
+  for (std::size_t i = 0; i < values.size() && i < type.fields.size(); ++i)
+    if (type.fields[i].kind == FieldKind::boolean) values[i] = values[i] != 0.0 ? 1.0 : 0.0;
+    else if (type.fields[i].kind == FieldKind::i32) values[i] = static_cast<std::int32_t>(values[i]);
+}
+
 }  // namespace mechsim::transport

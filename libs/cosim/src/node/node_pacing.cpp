@@ -64,7 +64,7 @@ bool NodePacing::spin_until_ready(double limit_s, const std::function<bool()>& p
 }
 
 void NodePacing::wait_for_samples(transport::Participant& participant, const NodeStatus& status, std::uint64_t awaited_step,
-                                  const std::function<bool()>& poll) const {
+                                  const std::function<bool()>& poll, std::chrono::nanoseconds longest) const {
   const config::RealtimeSpec& rt = scene_.realtime;
   if (rt.spin_wait && pacer_) {
     // Paced: block until spin_limit before the awaited samples are due, then spin.
@@ -72,14 +72,14 @@ void NodePacing::wait_for_samples(transport::Participant& participant, const Nod
     const std::int64_t spin_from = due - static_cast<std::int64_t>(rt.spin_limit * 1e9);
     const std::int64_t now = Pacer::now_ns();
     if (now < spin_from) {
-      participant.wait(std::min(status.until_next(), std::chrono::nanoseconds(spin_from - now)));
+      participant.wait(std::min({status.until_next(), std::chrono::nanoseconds(spin_from - now), longest}));
       return;
     }
     if (spin_until_ready(std::max(rt.spin_limit, 1e-9 * static_cast<double>(due - now) + rt.spin_limit), poll)) return;
   } else if (rt.spin_wait && spin_until_ready(rt.spin_limit, poll)) {
     return;
   }
-  participant.wait(std::min(status.until_next(), std::chrono::nanoseconds(50'000'000)));
+  participant.wait(std::min({status.until_next(), std::chrono::nanoseconds(50'000'000), longest}));
 }
 
 void NodePacing::write_figures(const std::string& path) const {

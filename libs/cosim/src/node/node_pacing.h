@@ -30,8 +30,9 @@ class NodePacing {
   // Waits for the next samples: blocking, or spinning (realtime.wait: spin) with `poll`
   // (takes samples, true once the node can go on). awaited_step: the step whose samples
   // the node waits for (their deadline is when they are due).
+  // longest: at most this long (a process group's executor has other members to serve).
   void wait_for_samples(transport::Participant& participant, const NodeStatus& status, std::uint64_t awaited_step,
-                        const std::function<bool()>& poll) const;
+                        const std::function<bool()>& poll, std::chrono::nanoseconds longest) const;
   // The node's real-time figures and lateness histogram for the launcher's summary.
   void write_figures(const std::string& path) const;
 

@@ -79,11 +79,8 @@ class Writer final : public SampleWriter {
   void write(const SampleHeader& header, std::span<const double> values) override {
     const TopicType& type = *key_.second;
     if (values.size() != type.fields.size()) throw std::logic_error("write " + type.idl_name + ": wrong number of values");
-    // What the wire would carry: booleans as true/false.
     std::vector<double> v(values.begin(), values.end());
-    for (std::size_t i = 0; i < v.size(); ++i)
-      if (type.fields[i].kind == FieldKind::boolean) v[i] = v[i] != 0.0 ? 1.0 : 0.0;
-      else if (type.fields[i].kind == FieldKind::i32) v[i] = static_cast<std::int32_t>(v[i]);
+    as_on_the_wire(type, v);
     std::vector<Notifier*> to_wake;
     {
       std::lock_guard<std::mutex> l(d_->m);

@@ -4,6 +4,8 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
+#include <memory>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -41,6 +43,35 @@ struct NodeRunOptions {
   // Test seam (nc_loop_test; `testing.lose_failed_status`): a node that fails writes no
   // failed status, as one lost on the wire; its exit code still says what failed.
   bool lose_failed_status = false;
+};
+
+// One node's run as passes that never block (the node loop, docs/node-loop.md): a node
+// process drives one with run_node; a process group's one executor thread drives all its
+// members in turn (ThreadNodeHost), so that co-located members hand each other their
+// samples in memory without a thread hand-off.
+class NodeRun {
+ public:
+  NodeRun(ScenePlan& plan, const std::string& node_name, transport::Participant& participant, const NodeRunOptions& options);
+  ~NodeRun();
+  NodeRun(const NodeRun&) = delete;
+  NodeRun& operator=(const NodeRun&) = delete;
+
+  enum class Pass { progressed, idle, ended };
+  // Takes what arrived, steps as far as the inputs allow, answers commands. Never throws:
+  // a failure ends the run (reported on mechsim/status and stderr) with its exit code.
+  Pass advance();
+  // After an idle pass: waits, at most `longest`, as the node alone would: for samples
+  // (the participant's waitset, or spinning in real-time mode) while it runs, else a nap
+  // until the next look at its commands.
+  void wait(std::chrono::nanoseconds longest);
+  // Running (between start and the end), as opposed to waiting for start or resume.
+  bool running() const;
+  // node_exit_code (node_host.h) once advance() returned ended.
+  int exit_code() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
 };
 
 // Runs the node to the end of the scene. Returns the process exit code (node_host.h,

@@ -82,6 +82,10 @@ void unpack_sequences(const TopicType& type, const std::vector<std::size_t>& at,
   }
 }
 
+// The values as a reader gets them back after the wire: booleans as 0/1, i32 fields
+// truncated to int32, f64 unchanged (the in-process paths deliver exactly what DDS would).
+void as_on_the_wire(const TopicType& type, std::vector<double>& values);
+
 // All data topic types, and lookup by the short name used in code ("CamState").
 const std::vector<const TopicType*>& all_topic_types();
 const TopicType* find_topic_type(std::string_view short_or_scoped_name);
