@@ -21,6 +21,10 @@ struct PackedParticipant {
   std::string group;
 };
 
+// processes: auto (the default) on a scene whose participants all run on the launcher's
+// host, unsecured: one group per DDS vendor (a second per core only past 8 participants),
+// FMU participants each in a process of their own; on several hosts or secured: a process
+// per participant.
 // The process groups that lay the scene out as its `processes:` asks, `cores` being the
 // launcher's host's (taken for every host: the launcher cannot see the others';
 // `processes: N` says it for all); none for per_participant. Packed are the

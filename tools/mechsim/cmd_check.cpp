@@ -64,8 +64,11 @@ void add_check_command(CLI::App& app, int& exit_code) {
         if (!p.process.empty()) group_of[p.name] = p.process;
       const int cores = launch::usable_cores();
       for (const auto& [participant, group] : launch::pack_processes(scene, cores))
-        group_of[participant] = group + " (processes: " + (scene.processes.count > 0 ? std::to_string(scene.processes.count) + " per vendor"
-                                                                                     : "per_core, " + std::to_string(cores) + " cores here") + ")";
+        group_of[participant] = group + " (processes: " +
+                                (scene.processes.kind == config::ProcessLayout::Kind::automatic ? std::string("auto")
+                                 : scene.processes.count > 0 ? std::to_string(scene.processes.count) + " per vendor"
+                                                             : "per_core, " + std::to_string(cores) + " cores here") +
+                                ")";
       for (const auto& node : plan.nodes()) {
         std::printf("  %-12s %-12s publishes %-24s (%d states, %s)\n", node.name().c_str(), node.type->name.c_str(),
                     node.topic.c_str(), node.block->num_states(), node.spec->vendor.c_str());

@@ -192,11 +192,15 @@ ProcessLayout parse_process_layout(const ConfigNode& node) {
   ProcessLayout layout;
   layout.key_path = node.path();
   const auto expected = [&] {
-    node.fail("expected per_participant, per_core or a number of process groups per DDS vendor (1..64)");
+    node.fail("expected auto, per_participant, per_core or a number of process groups per DDS vendor (1..64)");
   };
   if (!node.is_scalar()) expected();
   const std::string text = node.as_string();
-  if (text == "per_participant") return layout;
+  if (text == "auto") return layout;
+  if (text == "per_participant") {
+    layout.kind = ProcessLayout::Kind::per_participant;
+    return layout;
+  }
   if (text == "per_core") {
     layout.kind = ProcessLayout::Kind::per_core;
     return layout;

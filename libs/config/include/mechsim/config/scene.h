@@ -229,12 +229,15 @@ struct RecordSpec {
 // `process:`, `host:` or a `realtime:` of their own into as many process groups per DDS
 // vendor as the host has cores (count: that many groups), neighbours in scene order
 // together. `processes_key_path` is "" when the scene does not set it.
+// `processes:` (docs/scenes.md#processes-the-default-and-the-choices). automatic, the
+// default, lets the launcher choose the fastest layout it can keep safe (process_packing.h).
 struct ProcessLayout {
-  enum class Kind { per_participant, per_core, count };
-  Kind kind = Kind::per_participant;
+  enum class Kind { automatic, per_participant, per_core, count };
+  Kind kind = Kind::automatic;
   int count = 0;  // Kind::count: process groups per vendor
   std::string key_path;
-  bool packs() const { return kind != Kind::per_participant; }
+  // The scene asks for process groups itself (per_core or N).
+  bool packs() const { return kind == Kind::per_core || kind == Kind::count; }
 };
 
 struct Scene {
