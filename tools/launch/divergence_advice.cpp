@@ -4,7 +4,7 @@
 #include <optional>
 #include <stdexcept>
 
-#include "stable_step.h"
+#include "mechsim/assess/stable_step.h"
 
 namespace mechsim::launch {
 
@@ -32,7 +32,7 @@ std::string divergence_advice(const config::Scene& scene, const std::string& res
   std::optional<double> stable;
   try {
     std::fprintf(stderr, "mechsim: the run diverged; looking for a stable macro step with in-process runs...\n");
-    stable = find_stable_step_below(resolved_scene_path, {}, scene.time.step);
+    stable = assess::find_stable_step_below(resolved_scene_path, {}, scene.time.step);
   } catch (const std::exception&) {
     // No search possible (e.g. a replayed node): the generic advice below.
   }
