@@ -70,6 +70,13 @@ TEST(StepResponse, NotReachingTheBandIsNotSettled) {
 
 config::SignalRef ref(const std::string& participant, const std::string& output) { return {participant, output, ""}; }
 
+config::ReportSpec spec(const std::string& stat, const config::SignalRef& signal) {
+  config::ReportSpec r;
+  r.stat = stat;
+  r.signal = signal;
+  return r;
+}
+
 TEST(ReportFigures, ExtremaTimeTrueAndEnergyBalanceWithTheReference) {
   const auto t = grid(1.0);
   // The run: y = sin(2 pi t) peaks at t = 0.25 s; flag > 0.5 for t in [0.2, 0.7) (0.5 s);
@@ -91,17 +98,17 @@ TEST(ReportFigures, ExtremaTimeTrueAndEnergyBalanceWithTheReference) {
     };
   };
   config::Scene scene;
-  config::ReportSpec max{.stat = "max", .signal = ref("a", "y")};
+  config::ReportSpec max = spec("max", ref("a", "y"));
   max.at = ref("a", "angle");
   max.at_unit = "deg";
   max.at_scale = M_PI / 180;
   max.at_wrap_turn = true;
-  config::ReportSpec on{.stat = "time_true", .signal = ref("a", "flag")};
-  config::ReportSpec energy{.stat = "energy_balance", .signal = ref("a", "p_in")};
+  config::ReportSpec on = spec("time_true", ref("a", "flag"));
+  config::ReportSpec energy = spec("energy_balance", ref("a", "p_in"));
   energy.supplied = {ref("a", "p_in")};
   energy.dissipated = {ref("a", "p_loss")};
   energy.stored = {ref("a", "stored")};
-  config::ReportSpec unknown{.stat = "final", .signal = ref("b", "missing")};
+  config::ReportSpec unknown = spec("final", ref("b", "missing"));
   scene.report = {max, on, energy, unknown};
   const SeriesLookup reference = lookup(reference_signals);
   const auto figures = report_figures(scene, t, lookup(run), &reference);
@@ -140,7 +147,7 @@ TEST(ReportFigures, WithoutAReferenceNoDifferences) {
   const auto t = grid(0.5);
   auto y = sample(t, [](double s) { return 1 - std::exp(-s / 0.05); });
   config::Scene scene;
-  config::ReportSpec step{.stat = "step_response", .signal = ref("a", "y")};
+  config::ReportSpec step = spec("step_response", ref("a", "y"));
   step.target = "1";
   scene.report = {step};
   const auto figures = report_figures(scene, t, [&](const config::SignalRef&) { return std::span<const double>(y); });
