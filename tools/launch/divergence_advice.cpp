@@ -27,7 +27,7 @@ std::string divergence_advice(const config::Scene& scene, const std::string& res
   if (scene.time.adaptive)
     return ". The coupled run is unstable with an adaptive step of up to " + std::string(now) + " across " + cuts +
            "; lower time.max, e.g. --set 'time.max=" + step + "' (a fixed step's stable limit: mechsim bench SCENE --stability)";
-  // The stable step, found by in-process runs of the resolved scene (stable_step.h),
+  // The stable step, found by in-process runs of the resolved scene (libs/assess stable_step.h),
   // halving the macro step; any sampled participant follows it.
   std::optional<double> stable;
   try {
