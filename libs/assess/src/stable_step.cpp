@@ -33,7 +33,7 @@ std::vector<std::string> at_macro_step(const config::Scene& base, double h, std:
 
 StepTrial try_macro_step(const std::string& path, const config::Scene& base, const std::vector<std::string>& overrides,
                          double h, const std::string& a, const std::string& b, double stiffness) {
-  SteppedRun run(path, at_macro_step(base, h, overrides));
+  cosim::SteppedRun run(path, at_macro_step(base, h, overrides));
   run.watch_energy(a, b, stiffness);
   StepTrial t;
   try {

@@ -27,9 +27,6 @@ namespace mechsim::assess {
 // guard's slow criterion needs 1500 steps to see a mode growing by a few per mille per step).
 inline constexpr long kMinSteps = 2000;
 
-// The hand-stepped in-process run (libs/cosim).
-using cosim::SteppedRun;
-
 struct StepTrial {
   bool stable = true;
   std::string why;  // the guard's reason, the solver failure or the energy growth
