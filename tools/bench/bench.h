@@ -5,7 +5,7 @@
 // tolerance, runs each point over the in-process transport (cosim::run_inproc: the node
 // code as threads of this process) and a few spot checks over DDS (`mechsim launch`
 // processes), and measures each run against the monolithic reference at the same H
-// (launch::compare_signal on the scene's `compare:` outputs). An error that is not larger
+// (assess::compare_signal on the scene's `compare:` outputs). An error that is not larger
 // than the reference's own error estimate (cosim::estimate_reference_error: a re-run at a
 // 100x tighter tolerance) is never reported as a number: it is marked "below reference
 // accuracy". Adaptive points: the shipped scheme (its orders with every Jacobi edge quadratic,

@@ -15,13 +15,13 @@
 
 #include <span>
 
+#include "assessment_json.h"
 #include "elapsed.h"
+#include "mechsim/assess/report_figures.h"
+#include "mechsim/assess/signal_compare.h"
 #include "mechsim/cosim/inproc_run.h"
 #include "mechsim/cosim/output_log.h"
 #include "mechsim/cosim/scene_plan.h"
-#include "reference_accuracy.h"
-#include "run_report.h"
-#include "signal_compare.h"
 
 namespace mechsim::bench {
 
@@ -71,7 +71,7 @@ Reference& Bench::reference(int variant, double h) {
     cosim::ScenePlan plan = cosim::ScenePlan::build(*slot->scene);
     slot->run = cosim::run_reference(plan);
     slot->accuracy = cosim::estimate_reference_error(*slot->scene, slot->run);
-    slot->accuracy_json = launch::reference_accuracy_json(*slot->scene, slot->run, slot->accuracy);
+    slot->accuracy_json = tools::reference_accuracy_json(*slot->scene, slot->run, slot->accuracy);
   } catch (const std::exception& e) {
     slot->error = e.what();
   }
@@ -87,7 +87,7 @@ void Bench::adaptive_reference(const RunSpec& r, const std::string& run_dir, Ref
     const std::vector<double> instants = cosim::run_instants(plan, run_dir);
     ref.run = cosim::run_reference_at(plan, instants);
     ref.accuracy = cosim::estimate_reference_error(*ref.scene, ref.run);
-    ref.accuracy_json = launch::reference_accuracy_json(*ref.scene, ref.run, ref.accuracy);
+    ref.accuracy_json = tools::reference_accuracy_json(*ref.scene, ref.run, ref.accuracy);
   } catch (const std::exception& e) {
     ref.error = e.what();
   }
@@ -117,7 +117,7 @@ void Bench::compare(const config::Scene& scene, const Reference& ref, const std:
       res.signals[name] = {{"computed", false}};  // a field this configuration does not compute
       continue;
     }
-    const launch::SignalError e = launch::compare_signal(t, c, r);
+    const assess::SignalError e = assess::compare_signal(t, c, r);
     const double ref_max = ref.accuracy.max_abs_of(name), ref_rms = ref.accuracy.rms_abs_of(name);
     const double scale = e.range > 0 ? e.range : 1.0;
     // Refused when not larger than the reference's own error: such a figure says more about
@@ -158,12 +158,12 @@ void Bench::compare(const config::Scene& scene, const Reference& ref, const std:
     const int c = it->second.column(r.output);
     return c < 0 ? std::span<const double>{} : std::span<const double>(it->second.data[c]);
   };
-  const launch::SeriesLookup reference_lookup = [&](const config::SignalRef& r) -> std::span<const double> {
+  const assess::SeriesLookup reference_lookup = [&](const config::SignalRef& r) -> std::span<const double> {
     const int c = ref.run.log.column(r.full_name());
     return c < 0 ? std::span<const double>{} : std::span<const double>(ref.run.log.data[c]);
   };
   try {
-    res.report = launch::report_figures(scene, t, cosim_series, &reference_lookup);
+    res.report = tools::report_figures_json(assess::report_figures(scene, t, cosim_series, &reference_lookup));
   } catch (const std::exception& e) {
     res.report = {{"error", e.what()}};
   }

@@ -39,7 +39,7 @@
 #include "json_io.h"
 #include "plot.h"
 #include "scene_snapshot.h"
-#include "stable_step.h"
+#include "mechsim/assess/stable_step.h"
 #include "mechsim/config/scene.h"
 #include "mechsim/cosim/divergence_guard.h"
 #include "mechsim/cosim/nc_params.h"
@@ -125,17 +125,17 @@ std::vector<Variant> variants_of(const config::Scene& scene, const Cut& cut, boo
   return out;
 }
 
-// The in-process runs: tools/launch/stable_step.h (SteppedRun, try_macro_step).
-using launch::SteppedRun;
-using launch::kMinSteps;
+// The in-process runs: libs/assess stable_step.h (SteppedRun, try_macro_step).
+using cosim::SteppedRun;
+using assess::kMinSteps;
 
-launch::StepTrial try_step(const std::string& path, const config::Scene& base, const Cut& cut,
+assess::StepTrial try_step(const std::string& path, const config::Scene& base, const Cut& cut,
                            const std::vector<std::string>& overrides, double h) {
-  return launch::try_macro_step(path, base, overrides, h, cut.a, cut.b, cut.stiffness);
+  return assess::try_macro_step(path, base, overrides, h, cut.a, cut.b, cut.stiffness);
 }
 
 std::vector<std::string> at_step(const config::Scene& base, double h, std::vector<std::string> overrides) {
-  return launch::at_macro_step(base, h, std::move(overrides));
+  return assess::at_macro_step(base, h, std::move(overrides));
 }
 
 // --- linear analysis -------------------------------------------------------------------
@@ -262,7 +262,7 @@ void bisect_limit(const std::string& run_scene, const config::Scene& base, const
   const double h0 = base.time.step;
   auto trial = [&](double h) {
     ++row.runs;
-    launch::StepTrial t = try_step(run_scene, base, cut, overrides, h);
+    assess::StepTrial t = try_step(run_scene, base, cut, overrides, h);
     out << format_us(h) << (t.stable ? " ok  " : " x  ") << std::flush;
     if (!t.stable && (!row.unstable_h || h < *row.unstable_h)) row.why = t.why;
     return t.stable;

@@ -4,7 +4,7 @@
 #include <optional>
 #include <stdexcept>
 
-#include "stable_step.h"
+#include "mechsim/assess/stable_step.h"
 
 namespace mechsim::launch {
 
@@ -27,12 +27,12 @@ std::string divergence_advice(const config::Scene& scene, const std::string& res
   if (scene.time.adaptive)
     return ". The coupled run is unstable with an adaptive step of up to " + std::string(now) + " across " + cuts +
            "; lower time.max, e.g. --set 'time.max=" + step + "' (a fixed step's stable limit: mechsim bench SCENE --stability)";
-  // The stable step, found by in-process runs of the resolved scene (stable_step.h),
+  // The stable step, found by in-process runs of the resolved scene (libs/assess stable_step.h),
   // halving the macro step; any sampled participant follows it.
   std::optional<double> stable;
   try {
     std::fprintf(stderr, "mechsim: the run diverged; looking for a stable macro step with in-process runs...\n");
-    stable = find_stable_step_below(resolved_scene_path, {}, scene.time.step);
+    stable = assess::find_stable_step_below(resolved_scene_path, {}, scene.time.step);
   } catch (const std::exception&) {
     // No search possible (e.g. a replayed node): the generic advice below.
   }

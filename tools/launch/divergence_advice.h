@@ -1,6 +1,6 @@
 // What to change when a run diverged: the connections across a coupling element (else the
 // diverged node's own) and a smaller macro step, the stable one found by in-process runs of
-// the resolved scene where a search is possible (stable_step.h). Called once the run is
+// the resolved scene where a search is possible (libs/assess stable_step.h). Called once the run is
 // over, by the report, never from inside the supervision.
 #pragma once
 

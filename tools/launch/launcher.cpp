@@ -415,7 +415,7 @@ int Run::report(cosim::SupervisedRun out) {
                  rec["complete"].get<bool>() ? ", every published sample" : " — INCOMPLETE: see summary.json 'recording'");
   }
 
-  if (out.ok) compare_with_reference(scene_, plan_, run_dir_, opt_.plots, summary);
+  if (out.ok) write_comparison(scene_, assess::compare_with_reference(scene_, plan_, run_dir_), run_dir_, opt_.plots, summary);
   if (opt_.plots && summary.contains("realtime")) plot_lateness(scene_, run_dir_, summary);
   tools::write_json_file(run_dir_ + "/summary.json", summary);
   if (!opt_.json_path.empty()) tools::write_json_file(opt_.json_path, summary);

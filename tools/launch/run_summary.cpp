@@ -4,6 +4,7 @@
 #include <fstream>
 #include <map>
 
+#include "assessment_json.h"
 #include "json_io.h"
 #include "mechsim/cosim/composer.h"
 #include "mechsim/cosim/output_log.h"
@@ -204,7 +205,7 @@ int print_run_report(json& summary, const config::Scene& scene, std::uint64_t ru
         std::printf("  %-32s   the co-simulation is the reference one macro step late (a Jacobi edge): shifted by one step,"
                     " max |difference| %.3g %s\n", "", e["max_abs_error_shifted_one_step"].get<double>(), unit.c_str());
     }
-    print_figures(summary["report"]);
+    tools::print_figures(summary["report"]);
     print_realtime_summary(summary);
     if (!summary["events"].empty()) {
       std::map<std::string, int> counts;

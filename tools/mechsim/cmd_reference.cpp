@@ -1,13 +1,14 @@
 #include <cstdio>
 
+#include "assessment_json.h"
 #include "commands.h"
 #include "csv.h"
 #include "json_io.h"
+#include "mechsim/assess/report_figures.h"
 #include "mechsim/config/scene.h"
 #include "mechsim/cosim/composer.h"
 #include "mechsim/cosim/scene_plan.h"
 #include "provenance.h"
-#include "reference_accuracy.h"
 #include "run_report.h"
 
 namespace mechsim::tools {
@@ -60,12 +61,12 @@ void add_reference_command(CLI::App& app, int& exit_code) {
                              {"rtol", ref.rtol},
                              {"wall_time_s", ref.wall_time_s},
                              {"solver", launch::solver_stats_json(ref.stats)},
-                             {"accuracy", launch::reference_accuracy_json(scene, ref, accuracy)},
-                             {"report", launch::report_figures(scene, t, series)}};
+                             {"accuracy", reference_accuracy_json(scene, ref, accuracy)},
+                             {"report", report_figures_json(assess::report_figures(scene, t, series))}};
       std::printf("reference of '%s': %ld samples, rtol %g, %ld solver steps, %.3f s wall\n", scene.name.c_str(),
                   static_cast<long>(ref.log.rows()), ref.rtol, ref.stats.steps, ref.wall_time_s);
-      launch::print_reference_accuracy(summary["accuracy"]);
-      launch::print_figures(summary["report"]);
+      print_reference_accuracy(summary["accuracy"]);
+      print_figures(summary["report"]);
       if (!json_path->empty()) write_json_file(*json_path, summary);
       if (!csv_path->empty()) write_csv(*csv_path, ref.log.columns, ref.log.data);
       exit_code = 0;

@@ -2,7 +2,7 @@
 // of every node process, without transport: the numbers of a DDS run, docs/protocol.md):
 // samples and coupling predictions handed over in memory, a step barrier (advance) for the
 // linear analysis of the macro-step map. Used by `mechsim bench --stability` and the
-// launcher's stable-step search (tools/launch/stable_step.h) and by unit tests that sweep
+// launcher's stable-step search (libs/assess stable_step.h) and by unit tests that sweep
 // the macro step. For a run with the node threads and the in-process transport, see
 // inproc_run.h.
 #pragma once

@@ -1,4 +1,4 @@
-#include "stable_step.h"
+#include "mechsim/assess/stable_step.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 
 #include "mechsim/cosim/nc_params.h"
 
-namespace mechsim::launch {
+namespace mechsim::assess {
 
 // The overrides that put the scene at macro step h: the step, and every participant
 // sampled at the scene's own macro step sampled at h too (a sampled amplifier, identical
@@ -33,7 +33,7 @@ std::vector<std::string> at_macro_step(const config::Scene& base, double h, std:
 
 StepTrial try_macro_step(const std::string& path, const config::Scene& base, const std::vector<std::string>& overrides,
                          double h, const std::string& a, const std::string& b, double stiffness) {
-  SteppedRun run(path, at_macro_step(base, h, overrides));
+  cosim::SteppedRun run(path, at_macro_step(base, h, overrides));
   run.watch_energy(a, b, stiffness);
   StepTrial t;
   try {
@@ -76,4 +76,4 @@ std::optional<double> find_stable_step_below(const std::string& path, const std:
   return std::nullopt;
 }
 
-}  // namespace mechsim::launch
+}  // namespace mechsim::assess

@@ -6,7 +6,7 @@
 #include <span>
 #include <string>
 
-namespace mechsim::launch {
+namespace mechsim::assess {
 
 struct SignalError {
   double max_abs = 0.0;
@@ -17,6 +17,10 @@ struct SignalError {
   double t_of_max = 0.0;   // time of the largest absolute error
   bool finite = true;      // false when the co-simulation produced NaN or Inf
 };
+
+// What relative errors are divided by: the range of the reference, or for a constant one
+// its magnitude (at least 1), so that the figure stays defined. 1 for an empty series.
+double relative_scale(std::span<const double> reference);
 
 SignalError compare_signal(std::span<const double> t, std::span<const double> cosim, std::span<const double> reference);
 
@@ -41,4 +45,4 @@ struct ErrorCause {
 };
 ErrorCause classify_error(std::span<const double> t, std::span<const double> cosim, std::span<const double> reference);
 
-}  // namespace mechsim::launch
+}  // namespace mechsim::assess

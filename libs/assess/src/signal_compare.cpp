@@ -1,4 +1,4 @@
-#include "signal_compare.h"
+#include "mechsim/assess/signal_compare.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,13 @@
 #include <stdexcept>
 #include <vector>
 
-namespace mechsim::launch {
+namespace mechsim::assess {
+
+double relative_scale(std::span<const double> reference) {
+  if (reference.empty()) return 1.0;
+  const auto [lo, hi] = std::minmax_element(reference.begin(), reference.end());
+  return *hi > *lo ? *hi - *lo : std::max(std::abs(*hi), 1.0);
+}
 
 SignalError compare_signal(std::span<const double> t, std::span<const double> cosim, std::span<const double> reference) {
   if (cosim.size() != reference.size() || t.size() != reference.size())
@@ -26,9 +32,7 @@ SignalError compare_signal(std::span<const double> t, std::span<const double> co
     sum_sq += d * d;
   }
   e.rms_abs = std::sqrt(sum_sq / static_cast<double>(reference.size()));
-  // A constant reference has no range: fall back to its magnitude (or 1) so the relative
-  // figure stays defined.
-  const double scale = e.range > 0 ? e.range : std::max(std::abs(*hi), 1.0);
+  const double scale = relative_scale(reference);
   e.max_rel = e.max_abs / scale;
   e.rms_rel = e.rms_abs / scale;
   return e;
@@ -82,4 +86,4 @@ ErrorCause classify_error(std::span<const double> t, std::span<const double> cos
   return c;
 }
 
-}  // namespace mechsim::launch
+}  // namespace mechsim::assess

@@ -1,13 +1,13 @@
 // The summary's error figures and the naming of known coupling artefacts
-// (tools/launch/signal_compare.h): a signal one macro step late, a jump crossed late.
-#include "signal_compare.h"
+// (libs/assess signal_compare.h): a signal one macro step late, a jump crossed late.
+#include "mechsim/assess/signal_compare.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <vector>
 
-namespace mechsim::launch {
+namespace mechsim::assess {
 namespace {
 
 constexpr double kH = 1e-3;
@@ -73,4 +73,4 @@ TEST(ClassifyError, ASmoothDriftHasNoKnownCause) {
 }
 
 }  // namespace
-}  // namespace mechsim::launch
+}  // namespace mechsim::assess

@@ -21,14 +21,11 @@
 #include "mechsim/config/scene.h"
 #include "mechsim/cosim/stepped_run.h"
 
-namespace mechsim::launch {
+namespace mechsim::assess {
 
 // Each trial lasts the scene's duration or this many steps, whichever is longer (the
 // guard's slow criterion needs 1500 steps to see a mode growing by a few per mille per step).
 inline constexpr long kMinSteps = 2000;
-
-// The hand-stepped in-process run (libs/cosim).
-using cosim::SteppedRun;
 
 struct StepTrial {
   bool stable = true;
@@ -50,4 +47,4 @@ StepTrial try_macro_step(const std::string& path, const config::Scene& base, con
 std::optional<double> find_stable_step_below(const std::string& path, const std::vector<std::string>& overrides, double h,
                                              int halvings = 6);
 
-}  // namespace mechsim::launch
+}  // namespace mechsim::assess
