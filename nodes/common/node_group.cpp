@@ -23,30 +23,18 @@ int node_group_main(int argc, char** argv) {
   CLI::App app{"mechsim process group: several participants of a scene as threads of one process, each with its own "
                "endpoints (Fast DDS members share one DomainParticipant; participants.<p>.process, docs/scenes.md). "
                "Normally started by `mechsim launch`."};
-  std::string scene_path, run_dir, control_writer;
-  std::vector<std::string> node_names, replays;
-  std::uint64_t run_id = 0;
-  int domain = 0;
-  app.add_option("--scene", scene_path, "scene file (the run folder's resolved scene.yaml)")->required();
-  app.add_option("--node", node_names, "a participant of the group (repeated)")->required();
-  app.add_option("--run-id", run_id, "run id the samples carry")->required();
-  app.add_option("--domain", domain, "DDS domain id")->required()->check(CLI::Range(0, 232));
-  app.add_option("--run-dir", run_dir, "folder for the nodes' output logs (omit: none)");
-  app.add_option("--control-writer", control_writer,
-                 "GUID of the launcher's mechsim/control writer: a command of this run from any other writer fails the run");
-  app.add_option("--replay", replays, "NODE=TABLE: the node publishes this table (written by `mechsim launch --replay`)");
-  std::uint64_t resume_step = 0;
-  int generation = 0;
-  auto* resume_option = app.add_option("--resume", resume_step,
-                                       "restart after a crash: every node resumes from its checkpoint of this step (docs/faults.md)");
-  app.add_option("--generation", generation, "the rollback generation the resumed nodes belong to")->needs(resume_option);
+  cosim::NodeCommandLine command_line;
+  command_line.add_options(app, cosim::NodeProcessShape::group);
   CLI11_PARSE(app, argc, argv);
+  const std::string& scene_path = command_line.scene;
+  const std::vector<std::string>& node_names = command_line.nodes;
+  const int domain = command_line.domain;
 
   stop_on_signals();
   try {
     const config::Scene scene = config::load_scene(scene_path);
     std::map<std::string, std::string> replay_of;
-    for (const auto& r : replays) {
+    for (const auto& r : command_line.replays) {
       const auto eq = r.find('=');
       if (eq == std::string::npos) {
         std::cerr << "node group: --replay expects NODE=TABLE, got '" << r << "'\n";
@@ -68,14 +56,8 @@ int node_group_main(int argc, char** argv) {
       }
       if (!first) first = spec;
     }
-    apply_realtime(scene, *first, run_dir, node_names);
-    cosim::NodeRunOptions options;
-    options.run_dir = run_dir;
-    options.run_id = run_id;
-    options.domain = domain;
-    options.control_writer = control_writer;
-    if (resume_option->count() > 0) options.resume_step = resume_step;
-    options.generation = generation;
+    apply_realtime(scene, *first, command_line.run_dir, node_names);
+    cosim::NodeRunOptions options = run_options(command_line);
     cosim::ThreadNodeHost threads(
         node_names,
         [&](const std::string& node) {

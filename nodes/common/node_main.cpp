@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 
 #include "mechsim/config/scene.h"
+#include "mechsim/cosim/node_command_line.h"
 #include "mechsim/cosim/node_runner.h"
 #include "mechsim/cosim/output_log.h"
 #include "mechsim/cosim/process_realtime.h"
@@ -56,6 +57,17 @@ void apply_testing_seams(const config::ParticipantSpec& spec, cosim::NodeRunOpti
   options.lose_failed_status = spec.lose_failed_status;
 }
 
+cosim::NodeRunOptions run_options(const cosim::NodeCommandLine& command_line) {
+  cosim::NodeRunOptions options;
+  options.run_dir = command_line.run_dir;
+  options.run_id = command_line.run_id;
+  options.domain = command_line.domain;
+  options.control_writer = command_line.control_writer;
+  options.resume_step = command_line.resume_step;
+  options.generation = command_line.generation;
+  return options;
+}
+
 void stop_on_signals() {
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
@@ -71,27 +83,11 @@ int node_main(const char* node_type, int argc, char** argv) {
 
   CLI::App app{std::string("mechsim node '") + node_type +
                "': one participant of a scene. Normally started by `mechsim launch`."};
-  std::string scene_path, node_name, run_dir;
-  std::uint64_t run_id = 0;
-  int domain = 0;
-  app.add_option("--scene", scene_path, "scene file (the run folder's resolved scene.yaml)")->required();
-  app.add_option("--node", node_name, "participant instance name in the scene")->required();
-  app.add_option("--run-id", run_id, "run id the samples carry")->required();
-  app.add_option("--domain", domain, "DDS domain id")->required()->check(CLI::Range(0, 232));
-  app.add_option("--run-dir", run_dir, "folder for this node's output log (omit: none)");
-  std::string control_writer;
-  app.add_option("--control-writer", control_writer,
-                 "GUID of the launcher's mechsim/control writer: a command of this run from any other writer fails the run");
-  std::string replay;
-  app.add_option("--replay", replay,
-                 "publish the values of this table (written by `mechsim launch --replay`) instead of computing them");
-  std::uint64_t resume_step = 0;
-  int generation = 0;
-  auto* resume_option = app.add_option("--resume", resume_step,
-                                       "restart after a crash: resume from this node's checkpoint of this step in the run "
-                                       "folder, once the launcher sends resume (docs/faults.md)");
-  app.add_option("--generation", generation, "the rollback generation a resumed node belongs to")->needs(resume_option);
+  cosim::NodeCommandLine command_line;
+  command_line.add_options(app, cosim::NodeProcessShape::node);
   CLI11_PARSE(app, argc, argv);
+  const std::string& scene_path = command_line.scene;
+  const std::string& node_name = command_line.nodes.front();
 
   stop_on_signals();
   try {
@@ -105,17 +101,12 @@ int node_main(const char* node_type, int argc, char** argv) {
       std::cerr << node_type << ": participant '" << node_name << "' is a " << spec->type << ", not a " << node_type << "\n";
       return cosim::node_exit_code::bad_input;
     }
-    std::unique_ptr<cosim::ScenePlan> plan = node_plan(scene, node_name, replay);
-    apply_realtime(scene, *spec, run_dir, {node_name});
-    auto participant = transport::create_participant(spec->vendor, domain);
-    cosim::NodeRunOptions options;
-    options.run_dir = run_dir;
-    options.run_id = run_id;
-    options.domain = domain;
-    options.control_writer = control_writer;
+    std::unique_ptr<cosim::ScenePlan> plan =
+        node_plan(scene, node_name, command_line.replays.empty() ? std::string() : command_line.replays.front());
+    apply_realtime(scene, *spec, command_line.run_dir, {node_name});
+    auto participant = transport::create_participant(spec->vendor, command_line.domain);
+    cosim::NodeRunOptions options = run_options(command_line);
     options.stop_requested = &g_stop;
-    if (resume_option->count() > 0) options.resume_step = resume_step;
-    options.generation = generation;
     apply_testing_seams(*spec, options);
     return cosim::run_node(*plan, node_name, *participant, options);
   } catch (const config::ConfigError& e) {

@@ -1,6 +1,7 @@
 // The shared main of every node process. The launcher starts a node as
 //   <type> --scene RUN_DIR/scene.yaml --node NAME --run-id ID --domain D [--run-dir DIR]
-// with CYCLONEDDS_URI pointing at the loopback configuration.
+// (the whole command line: mechsim/cosim/node_command_line.h) with CYCLONEDDS_URI pointing
+// at the loopback configuration.
 #pragma once
 
 namespace mechsim::nodes {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "mechsim/config/scene.h"
+#include "mechsim/cosim/node_command_line.h"
 #include "mechsim/cosim/node_runner.h"
 #include "mechsim/cosim/scene_plan.h"
 
@@ -18,6 +19,8 @@ std::unique_ptr<cosim::ScenePlan> node_plan(const config::Scene& scene, const st
 // participant exists; their report goes to <run_dir>/<name>.process.json for each name.
 void apply_realtime(const config::Scene& scene, const config::ParticipantSpec& spec, const std::string& run_dir,
                     const std::vector<std::string>& names);
+// The run options the command line sets (run folder, run id, domain, control writer, resume).
+cosim::NodeRunOptions run_options(const cosim::NodeCommandLine& command_line);
 // The participant's test seams (`participants.<p>.testing`, restart and placement tests).
 void apply_testing_seams(const config::ParticipantSpec& spec, cosim::NodeRunOptions& options);
 // SIGINT and SIGTERM set stop_signalled().

@@ -25,6 +25,7 @@
 #include "hosts.h"
 #include "mechsim/config/scene.h"
 #include "mechsim/cosim/catalog.h"
+#include "mechsim/cosim/node_command_line.h"
 #include "mechsim/transport/backends.h"
 #include "mechsim/transport/network_config.h"
 #include "node_processes.h"
@@ -196,19 +197,16 @@ void Agent::start_node(const transport::AgentMessage& m) {
     if (network.address.empty() || addresses_.count(network.address) == 0)
       return refuse("the request names address '" + network.address + "', which is not one of this host's");
     const std::vector<std::string> env = hostrun::write_unicast_dds_files((run.folder / "dds").string(), network);
-    std::vector<std::string> args{"--scene", (run.folder / "scene.yaml").string()};
-    for (const std::string& member : members) args.insert(args.end(), {"--node", member});
-    args.insert(args.end(), {"--run-id", std::to_string(m.run_id), "--domain", std::to_string(opt_.domain), "--run-dir",
-                             run.folder.string()});
+    cosim::NodeCommandLine command_line{.scene = (run.folder / "scene.yaml").string(), .nodes = members, .run_id = m.run_id,
+                                        .domain = opt_.domain, .run_dir = run.folder.string()};
     // The launcher's control writer: its nodes take commands from nobody else.
     if (const std::string guid = request.value("control_writer", ""); !guid.empty()) {
       if (guid.size() != 33 || guid[24] != ':' ||
           guid.find_first_not_of("0123456789abcdef:") != std::string::npos)
         return refuse("the request's control_writer '" + guid + "' is not a GUID (24 hex digits ':' 8 hex digits)");
-      args.push_back("--control-writer");
-      args.push_back(guid);
+      command_line.control_writer = guid;
     }
-    run.processes.start(m.node, executable, args, (run.folder / (m.node + ".log")).string(), env);
+    run.processes.start(m.node, executable, command_line.to_arguments(), (run.folder / (m.node + ".log")).string(), env);
   } catch (const std::exception& e) {
     return refuse(e.what());
   }

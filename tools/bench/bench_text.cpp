@@ -43,6 +43,4 @@ std::string tol_text(double v) {
   return e == "0" ? m : m + "e" + sign + e;
 }
 
-nlohmann::json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
-
 }  // namespace mechsim::bench

@@ -7,6 +7,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "json_io.h"
+
 namespace mechsim::bench {
 
 inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -17,6 +19,6 @@ std::string time_text(double s);
 std::string num(double v, const char* fmt = "%.3g");
 // A tolerance as "1e-3", "2.5e-4".
 std::string tol_text(double v);
-nlohmann::json finite_or_null(double v);
+using tools::finite_or_null;  // json_io.h
 
 }  // namespace mechsim::bench

@@ -1,5 +1,7 @@
 #include "json_io.h"
 
+#include <cmath>
+
 #include "atomic_file.h"
 
 namespace mechsim::tools {
@@ -9,5 +11,7 @@ void write_json_file(const std::string& path, const nlohmann::json& document) {
       document.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
   write_file_atomically(path, text);
 }
+
+nlohmann::json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
 }  // namespace mechsim::tools

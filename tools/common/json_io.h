@@ -15,4 +15,7 @@ inline const std::string schema_version = "1";
 // in strings is replaced rather than refused. Throws std::runtime_error naming the path.
 void write_json_file(const std::string& path, const nlohmann::json& document);
 
+// A finite number as itself, NaN or an infinity as null.
+nlohmann::json finite_or_null(double v);
+
 }  // namespace mechsim::tools

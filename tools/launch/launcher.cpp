@@ -163,21 +163,21 @@ void Run::place_nodes() {
       // Another thread of the group's process (docs/scenes.md, `process`).
       LocalProcess& p = local[group_index[group]];
       p.members.push_back(node.name());
-      p.args.insert(p.args.end(), {"--node", node.name()});
+      p.command_line.nodes.push_back(node.name());
       if (auto it = replay_tables_.find(node.name()); it != replay_tables_.end())
-        p.args.insert(p.args.end(), {"--replay", node.name() + "=" + it->second});
+        p.command_line.replays.push_back(node.name() + "=" + it->second);
       continue;
     }
     LocalProcess p;
     p.name = group.empty() ? node.name() : group;
     p.members = {node.name()};
     p.executable = node_executable(group.empty() ? node.type->name : hostrun::kGroupType);
-    p.args = {"--scene", run_dir_ + "/scene.yaml", "--node", node.name(), "--run-id", std::to_string(run_id_),
-              "--domain", std::to_string(domain_), "--run-dir", run_dir_};
+    p.command_line = {.scene = run_dir_ + "/scene.yaml", .nodes = {node.name()}, .run_id = run_id_, .domain = domain_,
+                      .run_dir = run_dir_};
     // The node takes commands from this launcher's control writer only (docs/faults.md).
-    if (const std::string guid = control_->guid(); !guid.empty()) p.args.insert(p.args.end(), {"--control-writer", guid});
+    p.command_line.control_writer = control_->guid();
     if (auto it = replay_tables_.find(node.name()); it != replay_tables_.end())
-      p.args.insert(p.args.end(), {"--replay", group.empty() ? it->second : node.name() + "=" + it->second});
+      p.command_line.replays.push_back(group.empty() ? it->second : node.name() + "=" + it->second);
     p.log_path = run_dir_ + "/" + (group.empty() ? node.name() : "process-" + group) + ".log";
     p.environment = node_security_environment(scene_, node.name());
     if (!group.empty()) group_index[group] = local.size();

@@ -14,7 +14,7 @@ const LocalProcess& ProcessNodeHost::planned(const std::string& node) const {
 std::vector<std::string> ProcessNodeHost::nodes() const { return nodes_of(planned_); }
 
 void ProcessNodeHost::start_all() {
-  for (const auto& p : planned_) processes_.start(p.name, p.executable, p.args, p.log_path, p.environment);
+  for (const auto& p : planned_) processes_.start(p.name, p.executable, p.command_line.to_arguments(), p.log_path, p.environment);
 }
 
 std::vector<cosim::NodeExit> ProcessNodeHost::poll() { return node_exits(planned_, processes_.poll()); }
@@ -30,9 +30,10 @@ std::string ProcessNodeHost::describe_exit(const std::string& node) const {
 void ProcessNodeHost::restart(const std::string& node, std::uint64_t step, std::int32_t generation) {
   const LocalProcess& p = planned(node);
   if (!processes_.find(p.name).exited) return;  // a member of a group already started again
-  std::vector<std::string> args = p.args;
-  args.insert(args.end(), {"--resume", std::to_string(step), "--generation", std::to_string(generation)});
-  processes_.restart(p.name, args, p.log_path, p.environment);
+  cosim::NodeCommandLine resumed = p.command_line;
+  resumed.resume_step = step;
+  resumed.generation = generation;
+  processes_.restart(p.name, resumed.to_arguments(), p.log_path, p.environment);
 }
 
 void ProcessNodeHost::request_stop() {

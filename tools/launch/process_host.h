@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "mechsim/cosim/node_command_line.h"
 #include "mechsim/cosim/node_host.h"
 #include "node_processes.h"
 
@@ -16,7 +17,7 @@ struct LocalProcess {
   std::string name;                  // the node's, or the group's
   std::vector<std::string> members;  // the nodes it runs
   std::string executable;
-  std::vector<std::string> args;
+  cosim::NodeCommandLine command_line;  // a restart adds --resume
   std::string log_path;
   std::vector<std::string> environment;  // "NAME=value" on top of this process's
 };

@@ -7,7 +7,6 @@
 #include <ctime>
 #include <filesystem>
 #include <memory>
-#include <numbers>
 #include <optional>
 
 #include "cam_design_export.h"
@@ -20,6 +19,7 @@
 #include "json_io.h"
 #include "mechsim/config/scene.h"
 #include "mechsim/config/units.h"
+#include "mechsim/models/constants.h"
 
 namespace mechsim::tools {
 
@@ -92,7 +92,7 @@ SweepPlan plan_sweep(const CamDesignOptions& o, const config::Scene& scene, cons
 // Runs the sweep with a progress line per run and adds its keys to `report`.
 void run_sweep(const SweepPlan& plan, const cam_design::CamDesignResult& result, nlohmann::json& report) {
   namespace cd = cam_design;
-  constexpr double rpm = 2.0 * std::numbers::pi / 60.0;
+  using models::rpm;
   const cd::RollerCase& roller = result.roller->input_case;
   const cd::LiftOffSweepSettings& settings = plan.settings;
   const int max_runs = cd::max_sweep_runs(settings);

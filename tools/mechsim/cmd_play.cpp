@@ -1,21 +1,17 @@
 // `mechsim play FILE`: publishes a recording's topics again on a DDS domain (player.h).
 #include <unistd.h>
 
-#include <atomic>
-#include <csignal>
 #include <cstdio>
 #include <limits>
 
 #include "commands.h"
 #include "install_paths.h"
 #include "player.h"
+#include "stop_signals.h"
 
 namespace mechsim::tools {
 
 namespace {
-
-std::atomic<bool> g_stop{false};
-void on_signal(int) { g_stop.store(true); }
 
 struct PlayArgs {
   std::string file;
@@ -43,14 +39,13 @@ int play(const PlayArgs& a) {
   o.start_s = a.start;
   o.end_s = a.end;
   o.wait_for_readers = std::chrono::milliseconds(static_cast<long>(a.wait_readers_s * 1e3));
-  o.stop = &g_stop;
+  o.stop = &stop_requested();
   const bool tty = ::isatty(STDERR_FILENO);
   if (tty)
     o.progress = [](double t, std::uint64_t n) {
       std::fprintf(stderr, "\rplaying: t = %.4f s, %llu samples   ", t, static_cast<unsigned long long>(n));
     };
-  std::signal(SIGINT, on_signal);
-  std::signal(SIGTERM, on_signal);
+  catch_stop_signals();
   try {
     hostrun::configure_dds_environment();
     const recorder::PlayReport r = recorder::play(a.domain, o);

@@ -3,7 +3,6 @@
 // rebuilds a recording that was cut short (a crash of the recorder) into a complete file.
 #include <unistd.h>
 
-#include <atomic>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -16,14 +15,12 @@
 #include "mechsim/record/mcap_types.h"
 #include "install_paths.h"
 #include "provenance.h"
+#include "stop_signals.h"
 #include "recorder.h"
 
 namespace mechsim::tools {
 
 namespace {
-
-std::atomic<int> g_signal{0};
-void on_signal(int sig) { g_signal.store(sig); }
 
 struct RecordArgs {
   int domain = -1;
@@ -115,8 +112,7 @@ int record(const RecordArgs& a) {
   try {
     o.compression = recorder::parse_compression(a.compression);
     hostrun::configure_dds_environment();
-    std::signal(SIGINT, on_signal);
-    std::signal(SIGTERM, on_signal);
+    catch_stop_signals();
     rec = recorder::start_recording(a.domain, o);
   } catch (const std::invalid_argument& e) {
     std::fprintf(stderr, "mechsim record: %s\n", e.what());
@@ -130,7 +126,7 @@ int record(const RecordArgs& a) {
                a.compression.c_str());
   const auto started = std::chrono::steady_clock::now();
   auto last_progress = started;
-  while (!g_signal) {
+  while (!stop_requested()) {
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
     const auto now = std::chrono::steady_clock::now();
     if (a.duration_s > 0 && std::chrono::duration<double>(now - started).count() >= a.duration_s) break;

@@ -4,9 +4,7 @@
 //
 // echo and hz read data topics with the topics' own QoS (reliable, keep all), like any
 // other subscriber: a reader that cannot keep up slows the run down rather than miss steps.
-#include <atomic>
 #include <chrono>
-#include <csignal>
 #include <cstdio>
 #include <optional>
 #include <thread>
@@ -18,16 +16,13 @@
 #include "mechsim/cosim/scene_plan.h"
 #include "mechsim/transport/raw.h"
 #include "install_paths.h"
+#include "stop_signals.h"
 
 namespace mechsim::tools {
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-std::atomic<int> g_signal{0};
-void on_signal(int sig) { g_signal.store(sig); }
-
 
 bool valid_domain(int domain, const char* cmd) {
   if (domain >= 0 && domain <= 232) return true;
@@ -37,8 +32,7 @@ bool valid_domain(int domain, const char* cmd) {
 
 std::unique_ptr<transport::RawParticipant> join(int domain) {
   hostrun::configure_dds_environment();
-  std::signal(SIGINT, on_signal);
-  std::signal(SIGTERM, on_signal);
+  catch_stop_signals();
   return transport::create_raw_participant("cyclone", domain);
 }
 
@@ -51,7 +45,7 @@ std::string resolve_type(transport::RawParticipant& p, const std::string& topic,
   if (topic == transport::kStatusTopic) return "mechsim::msg::Status";
   const auto start = Clock::now();
   bool told = false;
-  while (!g_signal && (timeout_s <= 0 || seconds_since(start) < timeout_s)) {
+  while (!stop_requested() && (timeout_s <= 0 || seconds_since(start) < timeout_s)) {
     for (const auto& t : p.discovered_topics())
       if (t.name == topic && t.publishers > 0) return t.type_name;
     if (!told && seconds_since(start) > 1.0) {
@@ -83,7 +77,7 @@ std::unique_ptr<transport::RawReader> subscribe(transport::RawParticipant& p, co
                                                 const recorder::MessageLayout*& layout) {
   const std::string type = resolve_type(p, a.topic, a.type, a.timeout_s);
   if (type.empty()) {
-    if (!g_signal) std::fprintf(stderr, "mechsim topic %s: no writer of '%s' on domain %d\n", cmd, a.topic.c_str(), a.domain);
+    if (!stop_requested()) std::fprintf(stderr, "mechsim topic %s: no writer of '%s' on domain %d\n", cmd, a.topic.c_str(), a.domain);
     return nullptr;
   }
   layout = recorder::find_layout(type);
@@ -100,7 +94,7 @@ int list_topics(int domain, double wait_s) {
   auto p = join(domain);
   // Discovery on loopback takes tens of ms; give it the time asked for.
   const auto start = Clock::now();
-  while (!g_signal && seconds_since(start) < wait_s) p->wait(std::chrono::milliseconds(50));
+  while (!stop_requested() && seconds_since(start) < wait_s) p->wait(std::chrono::milliseconds(50));
   const auto topics = p->discovered_topics();
   std::size_t w_topic = 5, w_type = 4;
   for (const auto& t : topics) {
@@ -155,14 +149,14 @@ int echo(const EndpointArgs& a, long count) {
   auto p = join(a.domain);
   const recorder::MessageLayout* layout = nullptr;
   auto reader = subscribe(*p, a, "echo", layout);
-  if (!reader) return g_signal ? 0 : 1;
+  if (!reader) return stop_requested() ? 0 : 1;
   std::optional<recorder::MessageLayout> unnamed;
   if (layout->sequences) {
     if (named && named->type_name == layout->type_name) layout = &*named;
   }
   transport::RawSample sample;
   long shown = 0;
-  while (!g_signal && (count <= 0 || shown < count)) {
+  while (!stop_requested() && (count <= 0 || shown < count)) {
     if (!reader->take(sample)) {
       p->wait(std::chrono::milliseconds(100));
       continue;
@@ -192,13 +186,13 @@ int hz(const EndpointArgs& a, double window_s, long windows) {
   auto p = join(a.domain);
   const recorder::MessageLayout* layout = nullptr;
   auto reader = subscribe(*p, a, "hz", layout);
-  if (!reader) return g_signal ? 0 : 1;
+  if (!reader) return stop_requested() ? 0 : 1;
   transport::RawSample sample;
   long printed = 0;
   auto window_start = Clock::now();
   long n = 0;
   double t_first = 0, t_last = 0;
-  while (!g_signal && (windows <= 0 || printed < windows)) {
+  while (!stop_requested() && (windows <= 0 || printed < windows)) {
     while (reader->take(sample)) {
       if (n == 0) t_first = sample.header.t;
       t_last = sample.header.t;

@@ -10,8 +10,6 @@
 namespace mechsim::config {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 // Why a text is not a quantity ("unknown unit 'kgg'"); the public functions wrap it into
 // a UnitError that also says what was expected.
 class Detail : public std::runtime_error {
@@ -35,10 +33,10 @@ const UnitDef kUnits[] = {
     {"min", 60.0, dim::time, false},
     {"h", 3600.0, dim::time, false},
     {"rad", 1.0, dim::angle, false},
-    {"deg", kPi / 180.0, dim::angle, false},
-    {"\u00B0", kPi / 180.0, dim::angle, false},  // °
-    {"rev", 2.0 * kPi, dim::angle, false},
-    {"rpm", 2.0 * kPi / 60.0, dim::angular_velocity, false},
+    {"deg", std::numbers::pi / 180.0, dim::angle, false},
+    {"\u00B0", std::numbers::pi / 180.0, dim::angle, false},  // °
+    {"rev", 2.0 * std::numbers::pi, dim::angle, false},
+    {"rpm", 2.0 * std::numbers::pi / 60.0, dim::angular_velocity, false},
     {"N", 1.0, dim::force, true},
     {"Nm", 1.0, dim::torque, false},  // unambiguous: the nano prefix is a lower-case n
     {"Pa", 1.0, dim::pressure, true},

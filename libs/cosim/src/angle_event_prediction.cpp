@@ -1,7 +1,8 @@
 #include "mechsim/cosim/angle_event_prediction.h"
 
 #include <cmath>
-#include <numbers>
+
+#include "mechsim/models/constants.h"
 
 namespace mechsim::cosim {
 
@@ -14,7 +15,7 @@ PredictedAngleEvent predict_angle_event(const ShaftMotion& motion, std::span<con
                                         double until, double passed) {
   PredictedAngleEvent best;
   if (!(motion.speed > 0.0) || !(until > after)) return best;
-  constexpr double two_pi = 2.0 * std::numbers::pi;
+  using models::two_pi;
   const double from = std::max(motion.angle_at(after), passed);
   for (const double event : event_angles) {
     // The first event angle + 2 pi n beyond `from`.

@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "mechsim/cosim/node_params.h"
+#include "mechsim/models/constants.h"
 
 namespace mechsim::tools::cam_design {
 
@@ -15,7 +16,7 @@ namespace dim = config::dim;
 
 namespace {
 
-constexpr double degree = std::numbers::pi / 180.0;
+using models::degree;
 
 // One entry of the scene's `law:` list as written (before the law is built).
 struct RawSegment {

@@ -3,16 +3,16 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <numbers>
 
-#include "csv.h"
 #include "atomic_file.h"
+#include "csv.h"
+#include "mechsim/models/constants.h"
 
 namespace mechsim::tools::cam_design {
 
 namespace {
 
-constexpr double degree = std::numbers::pi / 180.0;
+using models::degree;
 
 // One group: the code right-aligned in three columns (as AutoCAD writes it), then the value.
 void group(std::string& out, int code, const std::string& value) {

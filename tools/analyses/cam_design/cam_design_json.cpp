@@ -1,9 +1,9 @@
 #include "cam_design_json.h"
 
 #include <cmath>
-#include <numbers>
 
 #include "json_io.h"
+#include "mechsim/models/constants.h"
 #include "provenance.h"
 
 namespace mechsim::tools::cam_design {
@@ -13,19 +13,11 @@ using nlohmann::json;
 
 namespace {
 
-constexpr double pi = std::numbers::pi;
-constexpr double degree = pi / 180.0;
-constexpr double rpm = 2.0 * pi / 60.0;
+using models::pi;
+using models::degree;
+using models::rpm;
 
-// A finite number, or null (JSON has no infinity).
-json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
-json mm(double m) { return number(m * 1e3); }
-// An angle of the cycle in [0, 360) deg.
-json cycle_deg(double rad) {
-  if (!std::isfinite(rad)) return nullptr;
-  const double d = std::fmod(rad / degree, 360.0);
-  return d < 0.0 ? d + 360.0 : d;
-}
+json mm(double m) { return finite_or_null(m * 1e3); }
 json law_index(const std::optional<std::size_t>& i) { return i ? json(*i) : json(nullptr); }
 
 json settings_json(const DesignSettings& s) {
@@ -61,7 +53,7 @@ void add_roller(json& j, const RollerDesign& d) {
                  {"spring_stiffness_n_per_mm", spring.stiffness_n_per_m / 1e3},
                  {"spring_preload_n", spring.preload_n},
                  {"spring_precompression_mm",
-                  spring.stiffness_n_per_m > 0.0 ? number(spring.preload_n / spring.stiffness_n_per_m * 1e3) : json(nullptr)},
+                  spring.stiffness_n_per_m > 0.0 ? finite_or_null(spring.preload_n / spring.stiffness_n_per_m * 1e3) : json(nullptr)},
                  {"loads", loads}};
 
   json table = json::array();
@@ -147,13 +139,13 @@ void add_roller(json& j, const RollerDesign& d) {
   j["contact_everywhere_no_spring"] = ns.contact_everywhere;
 
   const auto& ms = r.minimum_spring;
-  j["spring_rate_min_n_per_mm"] = ms.feasible ? number(ms.min_stiffness_n_per_m / 1e3) : json(nullptr);
+  j["spring_rate_min_n_per_mm"] = ms.feasible ? finite_or_null(ms.min_stiffness_n_per_m / 1e3) : json(nullptr);
   j["spring_rate_min_angle_deg"] = ms.feasible ? cycle_deg(ms.angle_rad) : json(nullptr);
   j["spring_rate_min_lift_mm"] = ms.feasible ? mm(ms.lift_m) : json(nullptr);
   j["spring_rate_min_preload_n"] = spring.preload_n;
   j["spring_rate_feasible"] = ms.feasible;
 
-  j["lift_off_speed_rpm"] = number(r.lift_off.speed_rad_s / rpm);
+  j["lift_off_speed_rpm"] = finite_or_null(r.lift_off.speed_rad_s / rpm);
   j["lift_off_angle_deg"] = std::isfinite(r.lift_off.speed_rad_s) ? cycle_deg(r.lift_off.angle_rad) : json(nullptr);
   j["lift_off_lift_mm"] = std::isfinite(r.lift_off.speed_rad_s) ? mm(r.lift_off.lift_m) : json(nullptr);
 
@@ -203,9 +195,9 @@ void add_roller(json& j, const RollerDesign& d) {
   j["single_rise_max_error_tau"] = sr.tau_max_error;
   j["single_rise_residual"] = sr.residual_amplitude;
   j["single_rise_residual_sampled_max"] = sr.max_residual;
-  j["single_rise_residual_approx"] = number(sr.approx_residual_amplitude);
+  j["single_rise_residual_approx"] = finite_or_null(sr.approx_residual_amplitude);
   j["single_rise_residual_approx_order"] = sr.approx_order;
-  j["single_rise_residual_approx_q"] = number(sr.approx_q);
+  j["single_rise_residual_approx_q"] = finite_or_null(sr.approx_q);
   const auto& mr = r.multi_rise;
   j["multi_rise_max_error"] = mr.max_error;
   j["multi_rise_max_error_angle_deg"] = cycle_deg(mr.theta_max_error_rad);
@@ -240,12 +232,18 @@ void add_flat_face(json& j, const FlatFaceDesign& f, const DesignSettings& s) {
   j["speed_fluctuation"] = s.speed_fluctuation;
   j["flywheel_inertia_kgm2"] = f.flywheel_inertia_kgm2;
   j["flywheel_disc_radius_mm"] = f.flywheel_disc_radius_m * 1e3;
-  j["lift_off_speed_rpm"] = number(f.lift_off.speed_rad_s / rpm);
+  j["lift_off_speed_rpm"] = finite_or_null(f.lift_off.speed_rad_s / rpm);
   j["lift_off_angle_deg"] = std::isfinite(f.lift_off.speed_rad_s) ? cycle_deg(f.lift_off.angle_rad) : json(nullptr);
   j["lift_off_lift_mm"] = std::isfinite(f.lift_off.speed_rad_s) ? mm(f.lift_off.lift_m) : json(nullptr);
 }
 
 }  // namespace
+
+json cycle_deg(double rad) {
+  if (!std::isfinite(rad)) return nullptr;
+  const double d = std::fmod(rad / degree, 360.0);
+  return d < 0.0 ? d + 360.0 : d;
+}
 
 json report_json(const CamDesignResult& result) {
   json j;

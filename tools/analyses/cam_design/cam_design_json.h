@@ -13,4 +13,7 @@ namespace mechsim::tools::cam_design {
 // Throws std::runtime_error when the scene file cannot be read for its hash.
 nlohmann::json report_json(const CamDesignResult& result);
 
+// An angle of the cycle in [0, 360) deg; null when not finite (the sweep's JSON too).
+nlohmann::json cycle_deg(double rad);
+
 }  // namespace mechsim::tools::cam_design

@@ -2,11 +2,9 @@
 
 #include <cmath>
 #include <algorithm>
-#include <cstdio>
-#include <filesystem>
-#include <limits>
-#include <numbers>
-#include <stdexcept>
+
+#include "mechsim/models/constants.h"
+#include "text_format.h"
 
 namespace mechsim::tools::cam_design {
 
@@ -17,16 +15,10 @@ using plot::Series;
 
 namespace {
 
-constexpr double pi = std::numbers::pi;
-constexpr double degree = pi / 180.0;
-constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+using models::pi;
+using models::degree;
+using models::nan;
 const std::string theta_label = "cam angle theta [deg]";
-
-std::string fmt(const char* format, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, format, v);
-  return buf;
-}
 
 // A series over the cycle from samples: x in deg, y = value(sample).
 template <class Sample, class F>
@@ -248,19 +240,7 @@ std::vector<NamedFigure> design_figures(const CamDesignResult& result) {
 }
 
 PlotOutcome write_plots(const std::string& dir, const CamDesignResult& result) {
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec) throw std::runtime_error("cannot create the plot directory " + dir + ": " + ec.message());
-  PlotOutcome out;
-  for (const auto& f : design_figures(result)) {
-    const std::string path = (std::filesystem::path(dir) / f.file_name).string();
-    std::string why;
-    if (plot::write_png(f.figure, path, &why))
-      out.files.push_back(path);
-    else
-      out.problems.push_back(path + ": " + why);
-  }
-  return out;
+  return plot::write_figures(dir, design_figures(result));
 }
 
 }  // namespace mechsim::tools::cam_design

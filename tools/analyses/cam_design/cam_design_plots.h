@@ -9,23 +9,16 @@
 #include <vector>
 
 #include "cam_design_report.h"
-#include "plot.h"
+#include "figure_files.h"
 
 namespace mechsim::tools::cam_design {
 
-struct NamedFigure {
-  std::string file_name;  // "motion_law.png"
-  plot::Figure figure;
-};
+using plot::NamedFigure;
+using plot::PlotOutcome;
 
 std::vector<NamedFigure> design_figures(const CamDesignResult& result);
 
-struct PlotOutcome {
-  std::vector<std::string> files;     // written PNGs (full paths)
-  std::vector<std::string> problems;  // "<file>: <why>" for each figure not written
-};
-
-// Creates `dir` if needed. Throws std::runtime_error when the directory cannot be created.
+// The design's figures in `dir` (plot::write_figures).
 PlotOutcome write_plots(const std::string& dir, const CamDesignResult& result);
 
 }  // namespace mechsim::tools::cam_design

@@ -1,12 +1,14 @@
 #include "cam_lift_off_sweep.h"
 
 #include <cmath>
-#include <cstdio>
 #include <limits>
-#include <numbers>
 #include <stdexcept>
 
+#include "cam_design_json.h"
+#include "json_io.h"
 #include "mechsim/cosim/node_params.h"
+#include "mechsim/models/constants.h"
+#include "text_format.h"
 
 namespace mechsim::tools::cam_design {
 
@@ -15,25 +17,12 @@ using nlohmann::json;
 
 namespace {
 
-constexpr double pi = std::numbers::pi;
-constexpr double degree = pi / 180.0;
-constexpr double rpm = 2.0 * pi / 60.0;
+using models::pi;
+using models::degree;
+using models::rpm;
 
-template <typename... Args>
-std::string format(const char* fmt, Args... args) {
-  char buf[512];
-  std::snprintf(buf, sizeof buf, fmt, args...);
-  return buf;
-}
-
-json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
-json optional_number(const std::optional<double>& v) { return v ? number(*v) : json(nullptr); }
-json rpm_or_null(const std::optional<double>& rad_s) { return rad_s ? number(*rad_s / rpm) : json(nullptr); }
-json cycle_deg(double rad) {
-  if (!std::isfinite(rad)) return nullptr;
-  const double d = std::fmod(rad / degree, 360.0);
-  return d < 0.0 ? d + 360.0 : d;
-}
+json optional_number(const std::optional<double>& v) { return v ? finite_or_null(*v) : json(nullptr); }
+json rpm_or_null(const std::optional<double>& rad_s) { return rad_s ? finite_or_null(*rad_s / rpm) : json(nullptr); }
 
 // The run of the search at the bracket's lift-off end (its first lift-off is "the" angle).
 const LiftOffRun* run_at(const LiftOffSearch& s, const std::optional<double>& speed) {
@@ -47,12 +36,12 @@ const LiftOffRun* run_at(const LiftOffSearch& s, const std::optional<double>& sp
 
 void validate(const LiftOffSweepSettings& s) {
   if (!(s.low_rad_s > 0.0 && s.high_rad_s > s.low_rad_s && std::isfinite(s.high_rad_s)))
-    throw std::invalid_argument(format("--sweep-range: expected 0 < low < high, got %g rpm..%g rpm", s.low_rad_s / rpm,
+    throw std::invalid_argument(fmt("--sweep-range: expected 0 < low < high, got %g rpm..%g rpm", s.low_rad_s / rpm,
                                        s.high_rad_s / rpm));
   if (!(s.tolerance_rad_s > 0.0 && std::isfinite(s.tolerance_rad_s)))
-    throw std::invalid_argument(format("--sweep-tol: expected a speed > 0, got %g rpm", s.tolerance_rad_s / rpm));
+    throw std::invalid_argument(fmt("--sweep-tol: expected a speed > 0, got %g rpm", s.tolerance_rad_s / rpm));
   if (!(s.revolutions >= 1.0 && std::isfinite(s.revolutions)))
-    throw std::invalid_argument(format("--sweep-revolutions: expected at least 1, got %g", s.revolutions));
+    throw std::invalid_argument(fmt("--sweep-revolutions: expected at least 1, got %g", s.revolutions));
 }
 
 LiftOffSweepSettings default_sweep_range(const cam::LiftOffSpeed& kinetostatic, double tolerance_rad_s,
@@ -169,8 +158,8 @@ std::vector<std::string> lift_off_run_overrides(const config::Scene& scene, cons
   // Whole macro steps (the scene refuses anything else); the last bit of a revolution is
   // never cut off.
   const double steps = std::ceil(revolutions * 2.0 * pi / speed_rad_s / time.step - 1e-9);
-  return {format("%s=%.17g rad/s", speed_key.c_str(), speed_rad_s),
-          format("time.end=%.17g s", time.start + steps * time.step)};
+  return {fmt("%s=%.17g rad/s", speed_key.c_str(), speed_rad_s),
+          fmt("time.end=%.17g s", time.start + steps * time.step)};
 }
 
 void add_lift_off_sweep_json(json& report, const LiftOffSweepSettings& settings, const LiftOffSearch& search,
@@ -195,7 +184,7 @@ void add_lift_off_sweep_json(json& report, const LiftOffSweepSettings& settings,
                     {"wall_time_s", r.wall_time_s},
                     {"run_dir", r.run_dir}});
   const double simulated = found ? *search.high_rad_s : std::numeric_limits<double>::quiet_NaN();
-  report["lift_off_speed_simulated_rpm"] = number(simulated / rpm);
+  report["lift_off_speed_simulated_rpm"] = finite_or_null(simulated / rpm);
   report["lift_off_simulated_angle_deg"] =
       first && first->first_lift_off_angle_deg ? json(*first->first_lift_off_angle_deg) : json(nullptr);
   report["lift_off_sweep"] = {
@@ -207,17 +196,17 @@ void add_lift_off_sweep_json(json& report, const LiftOffSweepSettings& settings,
       {"revolutions_per_run", settings.revolutions},
       {"bracket_rpm", {rpm_or_null(search.low_rad_s), rpm_or_null(search.high_rad_s)}},
       {"bracket_width_rpm", found ? json((*search.high_rad_s - *search.low_rad_s) / rpm) : json(nullptr)},
-      {"lift_off_speed_simulated_rpm", number(simulated / rpm)},
+      {"lift_off_speed_simulated_rpm", finite_or_null(simulated / rpm)},
       {"first_lift_off_angle_deg", report["lift_off_simulated_angle_deg"]},
       {"first_lift_off_t_s", first ? optional_number(first->first_lift_off_t_s) : json(nullptr)},
       {"follower_has_loads", !follower.loads.empty()},
-      {"kinetostatic_lift_off_speed_rpm", number(with_loads.speed_rad_s / rpm)},
+      {"kinetostatic_lift_off_speed_rpm", finite_or_null(with_loads.speed_rad_s / rpm)},
       {"kinetostatic_lift_off_angle_deg",
        std::isfinite(with_loads.speed_rad_s) ? cycle_deg(with_loads.angle_rad) : json(nullptr)},
-      {"kinetostatic_lift_off_speed_no_loads_rpm", number(no_loads.speed_rad_s / rpm)},
+      {"kinetostatic_lift_off_speed_no_loads_rpm", finite_or_null(no_loads.speed_rad_s / rpm)},
       {"kinetostatic_lift_off_angle_no_loads_deg",
        std::isfinite(no_loads.speed_rad_s) ? cycle_deg(no_loads.angle_rad) : json(nullptr)},
-      {"simulated_to_kinetostatic", found ? number(simulated / with_loads.speed_rad_s) : json(nullptr)},
+      {"simulated_to_kinetostatic", found ? finite_or_null(simulated / with_loads.speed_rad_s) : json(nullptr)},
       {"run_count", search.runs.size()},
       {"runs", runs},
       {"wall_time_s", total_wall_time_s}};
@@ -227,10 +216,10 @@ std::string lift_off_run_line(const LiftOffRun& r, int index, int max_runs) {
   std::string what = "no lift-off";
   if (r.lifted_off())
     what = r.first_lift_off_angle_deg
-               ? format("lift-off (%dx, first at %.1f deg)", r.lift_offs, *r.first_lift_off_angle_deg)
-               : format("lift-off (%dx)", r.lift_offs);
+               ? fmt("lift-off (%dx, first at %.1f deg)", r.lift_offs, *r.first_lift_off_angle_deg)
+               : fmt("lift-off (%dx)", r.lift_offs);
   const int width = max_runs >= 10 ? 2 : 1;  // aligned columns
-  return format("lift-off sweep: run %*d/%d at %7.2f rpm (%6.4g rad/s): %-31s %5.1f s", width, index, max_runs,
+  return fmt("lift-off sweep: run %*d/%d at %7.2f rpm (%6.4g rad/s): %-31s %5.1f s", width, index, max_runs,
                 r.speed_rad_s / rpm, r.speed_rad_s, what.c_str(), r.wall_time_s);
 }
 
@@ -241,22 +230,22 @@ std::vector<std::string> lift_off_sweep_lines(const LiftOffSearch& s, const Lift
   for (const auto& r : s.runs) wall += r.wall_time_s;
   const LiftOffRun* first = run_at(s, s.high_rad_s);
   const std::string angle = first && first->first_lift_off_angle_deg
-                                ? format(", first at %.1f deg", *first->first_lift_off_angle_deg)
+                                ? fmt(", first at %.1f deg", *first->first_lift_off_angle_deg)
                                 : std::string();
   switch (s.outcome) {
     case LiftOffOutcome::found:
-      out.push_back(format("lift-off speed (flexible follower, %zu distributed runs, %.0f s): %.2f rpm (%.4g rad/s)%s; "
+      out.push_back(fmt("lift-off speed (flexible follower, %zu distributed runs, %.0f s): %.2f rpm (%.4g rad/s)%s; "
                            "no lift-off at %.2f rpm (tolerance %.3g rpm)",
                            s.runs.size(), wall, *s.high_rad_s / rpm, *s.high_rad_s, angle.c_str(), *s.low_rad_s / rpm,
                            settings.tolerance_rad_s / rpm));
       if (std::isfinite(kinetostatic.speed_rad_s) && kinetostatic.speed_rad_s > 0.0)
-        out.push_back(format("  beside the kinetostatic one (rigid follower, same mass, spring and loads): %.2f rpm at %.1f deg; "
+        out.push_back(fmt("  beside the kinetostatic one (rigid follower, same mass, spring and loads): %.2f rpm at %.1f deg; "
                              "simulated/kinetostatic = %.3f",
                              kinetostatic.speed_rad_s / rpm, std::fmod(kinetostatic.angle_rad / degree + 360.0, 360.0),
                              *s.high_rad_s / kinetostatic.speed_rad_s));
       break;
     case LiftOffOutcome::lifts_off_at_range_low:
-      out.push_back(format("lift-off speed (flexible follower): below %.2f rpm, the low end of the range: it lifts off "
+      out.push_back(fmt("lift-off speed (flexible follower): below %.2f rpm, the low end of the range: it lifts off "
                            "there already%s (lower --sweep-range%s)",
                            settings.low_rad_s / rpm, angle.c_str(),
                            follower_has_loads ? "; functional load steps can open the contact at any speed, "
@@ -264,7 +253,7 @@ std::vector<std::string> lift_off_sweep_lines(const LiftOffSearch& s, const Lift
                                               : ""));
       break;
     case LiftOffOutcome::no_lift_off_at_range_high:
-      out.push_back(format("lift-off speed (flexible follower): above %.2f rpm, the high end of the range: no lift-off "
+      out.push_back(fmt("lift-off speed (flexible follower): above %.2f rpm, the high end of the range: no lift-off "
                            "there (raise --sweep-range)",
                            settings.high_rad_s / rpm));
       break;

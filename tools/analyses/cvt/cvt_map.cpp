@@ -1,7 +1,8 @@
 #include "cvt_map.h"
 
 #include <cmath>
-#include <numbers>
+
+#include "mechsim/models/constants.h"
 
 namespace mechsim::tools::cvt_map {
 
@@ -11,7 +12,7 @@ namespace cvt = models::cvt;
 
 namespace {
 
-constexpr double kRpm = std::numbers::pi / 30.0;
+using models::rpm;
 
 std::vector<double> linspace(double a, double b, int n) {
   std::vector<double> v(static_cast<std::size_t>(n));
@@ -81,7 +82,7 @@ CvtMapResult analyse_scene(const config::Scene& scene, const std::vector<std::st
   auto child = [&](const char* key) { return settings ? settings->optional_child(key) : std::optional<ConfigNode>{}; };
   r.s = parse_axis(child("ratio_setting"), dim::length, linspace(5e-3, 55e-3, 5), false);
   r.torque = parse_axis(child("torque"), dim::torque, linspace(20.0, 120.0, 5), true);
-  r.speed = parse_axis(child("speed"), dim::angular_velocity, linspace(1000 * kRpm, 5000 * kRpm, 5), true);
+  r.speed = parse_axis(child("speed"), dim::angular_velocity, linspace(1000 * rpm, 5000 * rpm, 5), true);
   resample(r.s, grid.s_points, "--s-points");
   resample(r.torque, grid.torque_points, "--torque-points");
   resample(r.speed, grid.speed_points, "--speed-points");

@@ -1,14 +1,14 @@
 // Presentation of the CVT operating maps: printed tables, JSON, PNG plots (docs/cvt.md).
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <functional>
-#include <numbers>
 
 #include "cvt_map.h"
 #include "json_io.h"
+#include "mechsim/models/constants.h"
 #include "plot.h"
 #include "provenance.h"
+#include "text_format.h"
 
 namespace mechsim::tools::cvt_map {
 
@@ -17,9 +17,7 @@ using nlohmann::json;
 
 namespace {
 
-constexpr double kRpm = std::numbers::pi / 30.0;
-
-json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+using models::rpm;
 
 using Getter = std::function<double(const cvt::CvtResult&)>;
 
@@ -30,7 +28,7 @@ json field(const CvtMapResult& r, const std::vector<cvt::CvtResult>& grid, const
     json plane = json::array();
     for (std::size_t it = 0; it < r.torque.size(); ++it) {
       json row = json::array();
-      for (std::size_t in = 0; in < r.speed.size(); ++in) row.push_back(number(get(grid[r.index(is, it, in)])));
+      for (std::size_t in = 0; in < r.speed.size(); ++in) row.push_back(finite_or_null(get(grid[r.index(is, it, in)])));
       plane.push_back(row);
     }
     out.push_back(plane);
@@ -73,12 +71,8 @@ const std::vector<FieldSpec>& l1_fields() {
   return f;
 }
 
-std::string fmt(const char* format, double v) {
-  if (!std::isfinite(v)) return "-";
-  char text[64];
-  std::snprintf(text, sizeof text, format, v);
-  return text;
-}
+// A table cell or label: "-" for a value the model could not compute.
+std::string number_text(const char* format, double v) { return std::isfinite(v) ? fmt(format, v) : "-"; }
 
 struct Range {
   double lo = INFINITY, hi = -INFINITY;
@@ -114,10 +108,10 @@ std::vector<std::string> summary_lines(const CvtMapResult& r) {
   const auto& p = r.config.params;
   out.push_back("CVT operating map of " + r.scene_name + " (" + r.source + ")");
   for (const auto& n : r.notes) out.push_back("  note: " + n);
-  out.push_back("  belt " + std::string(p.lambda == 1 ? "split" : "Lambda") + ", r_C " + fmt("%.1f", p.r_C * 1e3) +
+  out.push_back("  belt " + std::string(p.lambda == 1 ? "split" : "Lambda") + ", r_C " + number_text("%.1f", p.r_C * 1e3) +
                 " mm, " + (p.disc_driving ? "disc" : "intermediate body") + " driving; clamping " +
-                (r.config.clamp == cvt::ClampMode::clamping_force ? "force " + fmt("%.0f N", r.config.clamping_force)
-                                                                   : "safety factor v_K = " + fmt("%.3g", r.config.safety_factor)));
+                (r.config.clamp == cvt::ClampMode::clamping_force ? "force " + number_text("%.0f N", r.config.clamping_force)
+                                                                   : "safety factor v_K = " + number_text("%.3g", r.config.safety_factor)));
   out.push_back("  grid: " + std::to_string(r.s.size()) + " ratio settings x " + std::to_string(r.torque.size()) +
                 " torques x " + std::to_string(r.speed.size()) + " speeds");
   Range kr, epb, esys, s3, margin;
@@ -131,16 +125,16 @@ std::vector<std::string> summary_lines(const CvtMapResult& r) {
     s3.add(x.sigma[2] / 1e6);
     margin.add(x.v_KD);
   }
-  out.push_back("  F_K/(T/r) " + fmt("%.3f", kr.lo) + " .. " + fmt("%.3f", kr.hi) + ", eta_PB " + fmt("%.4f", epb.lo) +
-                " .. " + fmt("%.4f", epb.hi) + ", eta_SYS " + fmt("%.4f", esys.lo) + " .. " + fmt("%.4f", esys.hi));
-  out.push_back("  link-link stress " + fmt("%.0f", s3.lo) + " .. " + fmt("%.0f", s3.hi) + " N/mm^2 (admissible " +
-                fmt("%.0f", p.sigma_admissible / 1e6) + "), slip margin v_KD " + fmt("%.3f", margin.lo) + " .. " +
-                fmt("%.3f", margin.hi));
+  out.push_back("  F_K/(T/r) " + number_text("%.3f", kr.lo) + " .. " + number_text("%.3f", kr.hi) + ", eta_PB " + number_text("%.4f", epb.lo) +
+                " .. " + number_text("%.4f", epb.hi) + ", eta_SYS " + number_text("%.4f", esys.lo) + " .. " + number_text("%.4f", esys.hi));
+  out.push_back("  link-link stress " + number_text("%.0f", s3.lo) + " .. " + number_text("%.0f", s3.hi) + " N/mm^2 (admissible " +
+                number_text("%.0f", p.sigma_admissible / 1e6) + "), slip margin v_KD " + number_text("%.3f", margin.lo) + " .. " +
+                number_text("%.3f", margin.hi));
   if (flags) out.push_back("  flags on the grid: " + cvt::flag_names(flags));
   const Deviation d = deviation(r);
-  out.push_back("  L0 vs L1: F_K " + fmt("%+.1f", 100 * d.F_K_rel.lo) + " .. " + fmt("%+.1f", 100 * d.F_K_rel.hi) +
-                " %, eta_PB " + fmt("%+.4f", d.eta_PB.lo) + " .. " + fmt("%+.4f", d.eta_PB.hi) + ", eta_SYS " +
-                fmt("%+.4f", d.eta_SYS.lo) + " .. " + fmt("%+.4f", d.eta_SYS.hi));
+  out.push_back("  L0 vs L1: F_K " + number_text("%+.1f", 100 * d.F_K_rel.lo) + " .. " + number_text("%+.1f", 100 * d.F_K_rel.hi) +
+                " %, eta_PB " + number_text("%+.4f", d.eta_PB.lo) + " .. " + number_text("%+.4f", d.eta_PB.hi) + ", eta_SYS " +
+                number_text("%+.4f", d.eta_SYS.lo) + " .. " + number_text("%+.4f", d.eta_SYS.hi));
   struct Table {
     const char* title;
     const char* format;
@@ -152,18 +146,18 @@ std::vector<std::string> summary_lines(const CvtMapResult& r) {
                           {"eta_SYS", "%9.4f", [](const cvt::CvtResult& x) { return x.eta_SYS; }}};
   for (std::size_t is = 0; is < r.s.size(); ++is) {
     out.push_back("");
-    out.push_back("s = " + fmt("%g", r.s[is] * 1e3) + " mm (i_TH = " + fmt("%.4f", r.l1[r.index(is, 0, 0)].ratio) + ")");
+    out.push_back("s = " + number_text("%g", r.s[is] * 1e3) + " mm (i_TH = " + number_text("%.4f", r.l1[r.index(is, 0, 0)].ratio) + ")");
     for (const Table& t : tables) {
       std::string head = "  " + std::string(t.title);
       head.resize(14, ' ');
       head += "T_C \\ n_C";
-      for (double w : r.speed) head += fmt("%9.0f", w / kRpm);
+      for (double w : r.speed) head += number_text("%9.0f", w / rpm);
       out.push_back(head + "  rpm");
       for (std::size_t it = 0; it < r.torque.size(); ++it) {
-        std::string line = "  " + fmt("%19.1f", r.torque[it]) + " Nm";
+        std::string line = "  " + number_text("%19.1f", r.torque[it]) + " Nm";
         line.resize(25, ' ');
         for (std::size_t in = 0; in < r.speed.size(); ++in) {
-          std::string cell = fmt(t.format, t.get(r.l1[r.index(is, it, in)]));
+          std::string cell = number_text(t.format, t.get(r.l1[r.index(is, it, in)]));
           if (cell == "-") cell = "        -";
           line += cell;
         }
@@ -187,15 +181,15 @@ json report_json(const CvtMapResult& r) {
                      {"driving", p.disc_driving ? "disc" : "intermediate_body"},
                      {"r_C_mm", p.r_C * 1e3},
                      {"clamping", {{"mode", clamp_name(r.config.clamp)},
-                                   {"safety_factor", number(r.config.clamp == cvt::ClampMode::safety_factor ? r.config.safety_factor : NAN)},
-                                   {"force_n", number(r.config.clamp == cvt::ClampMode::clamping_force ? r.config.clamping_force : NAN)}}},
+                                   {"safety_factor", finite_or_null(r.config.clamp == cvt::ClampMode::safety_factor ? r.config.safety_factor : NAN)},
+                                   {"force_n", finite_or_null(r.config.clamp == cvt::ClampMode::clamping_force ? r.config.clamping_force : NAN)}}},
                      {"admissible_stress_n_mm2", p.sigma_admissible / 1e6},
                      {"link_curvatures_mm", {{"r11", r.curvatures.r11 * 1e3}, {"r12", r.curvatures.r12 * 1e3},
                                              {"r22", r.curvatures.r22 * 1e3}}}};
   json s_mm = json::array(), t_nm = json::array(), n_rpm = json::array();
   for (double v : r.s) s_mm.push_back(v * 1e3);
   for (double v : r.torque) t_nm.push_back(v);
-  for (double v : r.speed) n_rpm.push_back(v / kRpm);
+  for (double v : r.speed) n_rpm.push_back(v / rpm);
   j["axes"] = {{"order", {"s", "T_C", "n_C"}},
                {"s", {{"unit", "mm"}, {"meaning", "ratio setting (disc-axis offset)"}, {"values", s_mm}}},
                {"T_C", {{"unit", "Nm"}, {"meaning", "intermediate-body (input) torque"}, {"values", t_nm}}},
@@ -221,9 +215,9 @@ json report_json(const CvtMapResult& r) {
   l0["eta_PB"] = {{"unit", "-"}, {"values", field(r, r.l0, [](const cvt::CvtResult& x) { return x.eta_PB; })}};
   l0["eta_SYS"] = {{"unit", "-"}, {"values", field(r, r.l0, [](const cvt::CvtResult& x) { return x.eta_SYS; })}};
   const Deviation d = deviation(r);
-  l0["deviation_from_L1"] = {{"F_K_relative", {number(d.F_K_rel.lo), number(d.F_K_rel.hi)}},
-                             {"eta_PB_absolute", {number(d.eta_PB.lo), number(d.eta_PB.hi)}},
-                             {"eta_SYS_absolute", {number(d.eta_SYS.lo), number(d.eta_SYS.hi)}}};
+  l0["deviation_from_L1"] = {{"F_K_relative", {finite_or_null(d.F_K_rel.lo), finite_or_null(d.F_K_rel.hi)}},
+                             {"eta_PB_absolute", {finite_or_null(d.eta_PB.lo), finite_or_null(d.eta_PB.hi)}},
+                             {"eta_SYS_absolute", {finite_or_null(d.eta_SYS.lo), finite_or_null(d.eta_SYS.hi)}}};
   j["L0"] = l0;
   return j;
 }
@@ -237,12 +231,12 @@ PlotOutcome write_plots(const std::string& dir, const CvtMapResult& r) {
   if (r.speed.size() > 1) speeds.push_back(r.speed.size() - 1);
   auto family = [&](const std::string& ylabel, const Getter& get, std::size_t in) {
     plot::Panel panel;
-    panel.title = "n_C = " + fmt("%.0f", r.speed[in] / kRpm) + " rpm";
+    panel.title = "n_C = " + number_text("%.0f", r.speed[in] / rpm) + " rpm";
     panel.xlabel = "input torque T_C [Nm]";
     panel.ylabel = ylabel;
     for (std::size_t is = 0; is < r.s.size(); ++is) {
       plot::Series s;
-      s.label = "s = " + fmt("%g", r.s[is] * 1e3) + " mm (i = " + fmt("%.3f", r.l1[r.index(is, 0, in)].ratio) + ")";
+      s.label = "s = " + number_text("%g", r.s[is] * 1e3) + " mm (i = " + number_text("%.3f", r.l1[r.index(is, 0, in)].ratio) + ")";
       s.style = "linespoints";
       for (std::size_t it = 0; it < r.torque.size(); ++it) {
         s.x.push_back(r.torque[it]);
@@ -279,7 +273,7 @@ PlotOutcome write_plots(const std::string& dir, const CvtMapResult& r) {
         for (double v : s.y) y.add(v);
       if (m.fatigue_line) {
         const double adm = r.config.params.sigma_admissible / 1e6;
-        panel.hlines.push_back({adm, "admissible (fatigue) " + fmt("%.0f", adm) + " N/mm^2"});
+        panel.hlines.push_back({adm, "admissible (fatigue) " + number_text("%.0f", adm) + " N/mm^2"});
         y.add(adm);
       }
       // Headroom above the curves for the key (gnuplot draws it top right, opaque).

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <stdexcept>
+
+#include "mechsim/models/constants.h"
+#include "text_format.h"
 
 namespace mechsim::tools::nc_analyses {
 
@@ -11,7 +13,7 @@ namespace nc = models::nc;
 
 namespace {
 
-constexpr double two_pi = 2 * 3.14159265358979323846;
+using models::two_pi;
 
 BodeCurve bode_curve(const nc::MotorTachoParams& params, const MotorBodeSettings& s) {
   const double decades = std::log10(s.frequency_to_hz / s.frequency_from_hz);
@@ -25,12 +27,6 @@ BodeCurve bode_curve(const nc::MotorTachoParams& params, const MotorBodeSettings
     curve.phase_deg.push_back(p.phase_deg);
   }
   return curve;
-}
-
-std::string fmt(const char* format, double a, double b = 0, double c = 0, double d = 0) {
-  char text[256];
-  std::snprintf(text, sizeof text, format, a, b, c, d);
-  return text;
 }
 
 }  // namespace

@@ -1,9 +1,9 @@
 #include "nc_json.h"
 
 #include <cmath>
-#include <numbers>
 
 #include "json_io.h"
+#include "mechsim/models/constants.h"
 #include "provenance.h"
 
 namespace mechsim::tools::nc_analyses {
@@ -13,13 +13,12 @@ using nlohmann::json;
 
 namespace {
 
-constexpr double two_pi = 2 * std::numbers::pi;
+using models::two_pi;
 
-json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
-json optional_number(const std::optional<double>& v) { return v ? number(*v) : json(nullptr); }
+json optional_number(const std::optional<double>& v) { return v ? finite_or_null(*v) : json(nullptr); }
 // Relative deviation of an approximation from the exact value [%].
 json error_percent(double approx, const std::optional<double>& exact) {
-  return exact ? number(100 * (approx - *exact) / *exact) : json(nullptr);
+  return exact ? finite_or_null(100 * (approx - *exact) / *exact) : json(nullptr);
 }
 
 json header(const std::string& command, const std::string& scene_name, const std::string& scene_file,

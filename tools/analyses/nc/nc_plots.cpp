@@ -2,19 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <filesystem>
-#include <stdexcept>
+
+#include "text_format.h"
 
 namespace mechsim::tools::nc_analyses {
 
 namespace {
-
-std::string fmt(const char* format, double a, double b = 0) {
-  char text[128];
-  std::snprintf(text, sizeof text, format, a, b);
-  return text;
-}
 
 // The plot library draws an opaque key in the top right corner: widen the y range upwards
 // so that the curves stay below it (about 8 % of the plot height per key entry).
@@ -99,8 +92,8 @@ plot::Figure load_inertia_bode(const MotorBodeResult& r) {
 }
 
 plot::Figure position_figure(const SlideModesResult& r) {
-  plot::Series ritz{.label = fmt("Rayleigh-Ritz, %g cosines", r.settings.ritz_shapes)};
-  plot::Series converged{.label = fmt("FE chain, %g elements (converged)", r.settings.sweep_fe_elements),
+  plot::Series ritz{.label = fmt("Rayleigh-Ritz, %g cosines", static_cast<double>(r.settings.ritz_shapes))};
+  plot::Series converged{.label = fmt("FE chain, %g elements (converged)", static_cast<double>(r.settings.sweep_fe_elements)),
                          .style = "dashed"};
   for (const auto& p : r.f0_vs_position) {
     ritz.x.push_back(p.position * 1e3), ritz.y.push_back(p.ritz_hz);
@@ -126,8 +119,8 @@ plot::Figure diameter_figure(const SlideModesResult& r) {
   plot::Series m1{.label = "model 1: two inertias"};
   plot::Series m2a{.label = "model 2: grounded chain, 1st", .style = "dashed"};
   plot::Series m2b{.label = "model 2: grounded chain, 2nd", .style = "dashed"};
-  plot::Series m3{.label = fmt("model 3: continuous shaft, %g cosines", r.settings.ritz_shapes), .style = "linespoints"};
-  plot::Series m3c{.label = fmt("model 3: FE chain, %g elements", r.settings.sweep_fe_elements)};
+  plot::Series m3{.label = fmt("model 3: continuous shaft, %g cosines", static_cast<double>(r.settings.ritz_shapes)), .style = "linespoints"};
+  plot::Series m3c{.label = fmt("model 3: FE chain, %g elements", static_cast<double>(r.settings.sweep_fe_elements))};
   for (const auto& p : r.f0_vs_diameter) {
     const double d = p.diameter * 1e3;
     m1.x.push_back(d), m1.y.push_back(p.model1_hz);
@@ -191,22 +184,6 @@ std::vector<NamedFigure> slide_modes_figures(const SlideModesResult& r) {
   return {{"f0_vs_position.png", with_room_for_keys(position_figure(r))},
           {"f0_vs_diameter.png", with_room_for_keys(diameter_figure(r))},
           {"model3_convergence.png", with_room_for_keys(convergence_figure(r))}};
-}
-
-PlotOutcome write_figures(const std::string& dir, const std::vector<NamedFigure>& figures) {
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec) throw std::runtime_error("cannot create the plot directory " + dir + ": " + ec.message());
-  PlotOutcome out;
-  for (const auto& f : figures) {
-    const std::string path = (std::filesystem::path(dir) / f.file_name).string();
-    std::string why;
-    if (plot::write_png(f.figure, path, &why))
-      out.files.push_back(path);
-    else
-      out.problems.push_back(path + ": " + why);
-  }
-  return out;
 }
 
 }  // namespace mechsim::tools::nc_analyses

@@ -8,26 +8,17 @@
 #include <string>
 #include <vector>
 
+#include "figure_files.h"
 #include "motor_bode.h"
-#include "plot.h"
 #include "slide_modes.h"
 
 namespace mechsim::tools::nc_analyses {
 
-struct NamedFigure {
-  std::string file_name;  // "bode.png"
-  plot::Figure figure;
-};
+using plot::NamedFigure;
+using plot::PlotOutcome;
+using plot::write_figures;
 
 std::vector<NamedFigure> motor_bode_figures(const MotorBodeResult& result);
 std::vector<NamedFigure> slide_modes_figures(const SlideModesResult& result);
-
-struct PlotOutcome {
-  std::vector<std::string> files;     // written PNGs (full paths)
-  std::vector<std::string> problems;  // "<file>: <why>" for each figure not written
-};
-
-// Creates `dir` if needed. Throws std::runtime_error when the directory cannot be created.
-PlotOutcome write_figures(const std::string& dir, const std::vector<NamedFigure>& figures);
 
 }  // namespace mechsim::tools::nc_analyses

@@ -1,7 +1,8 @@
 #include "slide_modes.h"
 
 #include <cmath>
-#include <cstdio>
+
+#include "text_format.h"
 
 namespace mechsim::tools::nc_analyses {
 
@@ -22,12 +23,6 @@ struct Model3 {
     return fe_hz(data, x, settings.sweep_fe_elements);
   }
 };
-
-std::string fmt(const char* format, double a, double b = 0, double c = 0) {
-  char text[256];
-  std::snprintf(text, sizeof text, format, a, b, c);
-  return text;
-}
 
 }  // namespace
 
@@ -97,7 +92,7 @@ std::vector<std::string> slide_modes_summary(const SlideModesResult& r) {
   lines.push_back(fmt("  model 1 (two inertias)      %.1f Hz", r.model1_hz));
   lines.push_back(fmt("  model 2 (grounded chain)    %.1f Hz, %.1f Hz", r.model2.first_hz, r.model2.second_hz));
   lines.push_back(fmt("  model 3 (continuous shaft)  %.1f Hz at x = %.0f mm", r.model3_hz, r.slide_position * 1e3) +
-                  fmt(" with %.0f Ritz shapes; converged %.2f Hz", r.settings.ritz_shapes, r.model3_converged_hz));
+                  fmt(" with %.0f Ritz shapes; converged %.2f Hz", static_cast<double>(r.settings.ritz_shapes), r.model3_converged_hz));
   lines.push_back(fmt("  f0(x) highest               %.1f Hz at x = %.0f mm", r.f0_max.converged_hz,
                       r.f0_max.position * 1e3));
   if (r.first_mode_node)

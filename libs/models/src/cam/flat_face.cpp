@@ -5,14 +5,10 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "mechsim/models/constants.h"
 #include "numerics.h"
 
 namespace mechsim::models::cam {
-
-namespace {
-constexpr double two_pi = 2.0 * std::numbers::pi;
-constexpr double degree = std::numbers::pi / 180.0;
-}  // namespace
 
 FlatFaceParams flat_face_example(double lift_m, double speed_rad_s) {
   return {0.040, lift_m, std::numbers::pi, speed_rad_s, 0.1, 5000.0, 20.0};

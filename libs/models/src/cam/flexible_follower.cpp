@@ -3,16 +3,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <limits>
-#include <numbers>
 #include <stdexcept>
+
+#include "mechsim/models/constants.h"
 
 namespace mechsim::models::cam {
 
 namespace {
-
-constexpr double two_pi = 2.0 * std::numbers::pi;
-constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 
 bool moving(const MotionLaw::Piece& p) { return p.segment.type != SegmentType::dwell && p.segment.lift_m != 0.0; }
 

@@ -2,19 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <numbers>
 #include <stdexcept>
 
+#include "mechsim/models/constants.h"
 #include "numerics.h"
 
 namespace mechsim::models::cam {
 
 namespace {
-
-constexpr double inf = std::numeric_limits<double>::infinity();
-constexpr double two_pi = 2.0 * std::numbers::pi;
-constexpr double degree = std::numbers::pi / 180.0;
 
 // A stretch of the cycle where the law is one piece and the functional load is constant:
 // every integrand below is smooth on it.
@@ -49,10 +45,7 @@ std::vector<Span> smooth_spans(const MotionLaw& law, const std::vector<follower:
 int samples_for(const Span& s) { return std::max(4, static_cast<int>(std::ceil((s.end - s.begin) / (0.05 * degree)))); }
 int quadrature_parts(double width) { return std::max(1, static_cast<int>(std::ceil(width / (0.5 * degree)))); }
 
-double wrap(double theta) {
-  double t = std::fmod(theta, two_pi);
-  return t < 0.0 ? t + two_pi : (t >= two_pi ? 0.0 : t);
-}
+using numerics::wrap;
 
 // N cos α on a span (no ω̇: constant speed).
 double normal_component(const follower::FollowerParams& f, const Span& s, const LawPoint& p, double w) {

@@ -1,28 +1,23 @@
 #include "mechsim/models/cam/geometry_analysis.h"
 
 #include <cmath>
-#include <limits>
 #include <numbers>
 #include <stdexcept>
 
+#include "mechsim/models/constants.h"
 #include "numerics.h"
 
 namespace mechsim::models::cam {
 
 namespace {
 
-constexpr double inf = std::numeric_limits<double>::infinity();
-constexpr double two_pi = 2.0 * std::numbers::pi;
 // Coarse sampling before refinement: fine enough to separate neighbouring extrema of
 // the smooth α(θ) and κ(θ) of real laws.
 constexpr double sample_step_rad = 0.05 * std::numbers::pi / 180.0;
 
 int samples_for(double width) { return std::max(4, static_cast<int>(std::ceil(width / sample_step_rad))); }
 
-double wrap(double theta) {
-  double t = std::fmod(theta, two_pi);
-  return t < 0.0 ? t + two_pi : (t >= two_pi ? 0.0 : t);
-}
+using numerics::wrap;
 
 }  // namespace
 

@@ -2,16 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <sstream>
 #include <stdexcept>
+
+#include "mechsim/models/constants.h"
 
 namespace mechsim::models::cam {
 
 namespace {
 
-constexpr double pi = std::numbers::pi;
-constexpr double two_pi = 2.0 * std::numbers::pi;
 // Angles built from degrees (26.25° + 18.75° = 45°) differ by rounding only: joints closer
 // than this are the same joint.
 constexpr double angle_tolerance = 1e-9;

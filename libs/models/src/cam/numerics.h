@@ -7,7 +7,15 @@
 #include <functional>
 #include <utility>
 
+#include "mechsim/models/constants.h"
+
 namespace mechsim::models::cam::numerics {
+
+// An angle in [0, 2 pi).
+inline double wrap(double theta) {
+  double t = std::fmod(theta, two_pi);
+  return t < 0.0 ? t + two_pi : (t >= two_pi ? 0.0 : t);
+}
 
 struct Located {
   double x, value;

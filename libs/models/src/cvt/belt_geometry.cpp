@@ -4,17 +4,15 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
-#include <limits>
-#include <numbers>
 #include <stdexcept>
 #include <string>
+
+#include "mechsim/models/constants.h"
 
 namespace mechsim::models::cvt {
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 using cplx = std::complex<double>;
 
 // acos as MATLAB evaluates it: real arguments outside [−1, 1] give 0 + i·acosh(x) or
@@ -24,7 +22,7 @@ cplx acos_m(cplx x) {
   if (x.imag() == 0.0) {
     const double r = x.real();
     if (r > 1.0) return {0.0, std::acosh(r)};
-    if (r < -1.0) return {kPi, -std::acosh(-r)};
+    if (r < -1.0) return {pi, -std::acosh(-r)};
     return {std::acos(r), 0.0};
   }
   return std::acos(x);
@@ -50,7 +48,7 @@ AnglesC contact_angles_c(double s, double z, double rf) {
   AnglesC a;
   a.D = 2.0 * acos_m(cplx{1.0 / G2, 0.0});
   a.F = acos_m(cplx{1.0 / G1, 0.0});
-  a.C = 2.0 * kPi - a.D - 2.0 * a.F;
+  a.C = 2.0 * pi - a.D - 2.0 * a.F;
   return a;
 }
 
@@ -60,14 +58,14 @@ cplx filling_degree_c(double s, double z, double rf, const LinkGeometry& g) {
   const cplx tau_C = link_angle_c(1.0, g.rho, g.t);
   const cplx tau_F = link_angle_c(rf, g.rho, g.t);
   const cplx n_bv = a.D / tau_D + a.C / tau_C + 2.0 * a.F / tau_F;  // (3.24)
-  return n_bv / (2.0 * kPi / tau_C);                                // (3.23), (3.25)
+  return n_bv / (2.0 * pi / tau_C);                                // (3.23), (3.25)
 }
 
 // MATLAB interp1 (linear) on a monotone x; NaN outside.
 double interp1(const std::vector<double>& x, const std::vector<double>& y, double xi) {
   const std::size_t n = x.size();
-  if (n == 0) return kNaN;
-  if (n == 1) return xi == x[0] ? y[0] : kNaN;
+  if (n == 0) return nan;
+  if (n == 1) return xi == x[0] ? y[0] : nan;
   for (std::size_t k = 0; k + 1 < n; ++k) {
     const double a = x[k], b = x[k + 1];
     if ((xi - a) * (xi - b) <= 0.0) {
@@ -75,7 +73,7 @@ double interp1(const std::vector<double>& x, const std::vector<double>& y, doubl
       return y[k] + (xi - a) / (b - a) * (y[k + 1] - y[k]);
     }
   }
-  return kNaN;
+  return nan;
 }
 
 std::vector<double> linspace(double a, double b, int n) {
@@ -93,7 +91,7 @@ LinkGeometry LinkGeometry::from(const CvtParams& p) {
 
 double link_angle(double r, double rho, double t) {
   const cplx v = link_angle_c(r, rho, t);
-  return v.imag() == 0.0 ? v.real() : kNaN;
+  return v.imag() == 0.0 ? v.real() : nan;
 }
 
 double link_radius(double tau, double rho, double t) {
@@ -112,7 +110,7 @@ ContactAngles contact_angles(double s, double z, double rf) {
 
 double filling_degree(double s, double z, double rf, const LinkGeometry& g) {
   const cplx bv = filling_degree_c(s, z, rf, g);
-  return std::abs(bv.imag()) < 1e-12 ? bv.real() : kNaN;
+  return std::abs(bv.imag()) < 1e-12 ? bv.real() : nan;
 }
 
 double BeltShape::mean_slip() const {
@@ -159,7 +157,7 @@ BeltShape shape_scalars_from(double s, double z, double rf, bool closing_governe
   b.n_C = static_cast<int>(std::floor(b.gamma_C / b.tau_C));
   b.gamma_Dd = (b.n_D - 1) * b.tau_D;
   b.gamma_Cd = (b.n_C - 1) * b.tau_C;
-  b.gamma_Fd = (2.0 * kPi - b.gamma_Dd - b.gamma_Cd) / 2.0;
+  b.gamma_Fd = (2.0 * pi - b.gamma_Dd - b.gamma_Cd) / 2.0;
   b.theta_D = (b.tau_D + b.tau_F) / 2.0;
   b.theta_C = (b.tau_C + b.tau_F) / 2.0;
   b.psi = b.gamma_Fd - b.theta_D - b.theta_C;
@@ -304,7 +302,7 @@ TransitionKinematics transition_kinematics(double s, double z, const LinkGeometr
     return std::hypot(d.x, d.y) - s;
   };
   // Scan for the first sign change in a generous range of θ_C, then bisect.
-  const double step = 0.01 * kPi / 180.0;
+  const double step = 0.01 * pi / 180.0;
   double a = step, fa = f(a);
   double b = a;
   bool found = false;
@@ -332,7 +330,7 @@ TransitionKinematics transition_kinematics(double s, double z, const LinkGeometr
   r.theta_C = 0.5 * (a + b);
   const End d = end_point(r.theta_C);
   r.phi_D = std::asin(std::abs(d.y) / s);                       // (3.12)
-  r.phi_C = kPi - (r.phi_D + theta_D + alpha + r.theta_C);
+  r.phi_C = pi - (r.phi_D + theta_D + alpha + r.theta_C);
   return r;
 }
 

@@ -4,16 +4,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
-#include <numbers>
 #include <sstream>
+
+#include "mechsim/models/constants.h"
 
 namespace mechsim::models::cvt {
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr int kMaxPushSteps = 20000;  // F_P0 steps of duwproc·T/r before "no solution"
 
 // One contact arc as FF_tabel sees it.
@@ -209,8 +207,8 @@ CvtModel::CvtModel(CvtParams params)
         p.t_C > 0 && p.l_C > 0 && p.l_E > 0 && p.A_SU > 0 && p.E_R > 0 && p.sigma_admissible > 0))
     bad("lengths, areas, moduli and the admissible stress must be > 0 (link mass >= 0)");
   if (!(p.filling_degree > 0.9 && p.filling_degree < 1.0)) bad("filling degree bv must lie in (0.9, 1)");
-  if (!(p.closing_angle > 0 && p.closing_angle < kPi / 4)) bad("closing angle tau_S must lie in (0, 45 deg)");
-  if (!(p.beta_D > 0 && p.beta_D < kPi / 2 && p.beta_C > 0 && p.beta_C < kPi / 2))
+  if (!(p.closing_angle > 0 && p.closing_angle < pi / 4)) bad("closing angle tau_S must lie in (0, 45 deg)");
+  if (!(p.beta_D > 0 && p.beta_D < pi / 2 && p.beta_C > 0 && p.beta_C < pi / 2))
     bad("cone angles must lie in (0, 90 deg)");
   if (!(p.mu_D > 0 && p.mu_C > 0 && p.mu_E >= 0 && p.mu_SU >= 0 && p.mu_SUC >= 0))
     bad("friction coefficients mu_D, mu_C must be > 0, the others >= 0");
@@ -269,7 +267,7 @@ BearingLoads CvtModel::bearing_losses(bool primary, double r, double omega, doub
   L.F_rB = std::hypot(FrB1, FrB2);
   L.F_aA = 0.5 * L.F_rA / sb.A.axial_factor;  // SKF table B2-2 case 1, K_a = F_K
   L.F_aB = L.F_aA + F_K;
-  const double n = std::abs(omega) * 60.0 / (2.0 * kPi);
+  const double n = std::abs(omega) * 60.0 / (2.0 * pi);
   const double nu = p_.grease_viscosity * 1e6;
   auto T_L0 = [&](double dm) {
     const double d3 = std::pow(dm * mm, 3.0);
@@ -353,7 +351,7 @@ CvtResult CvtModel::evaluate_tc(const CvtOperatingPoint& op, double T_C, double 
   r.T_over_r = T_C / p_.r_C;      // (4.61)
   r.v_PB = op.omega_C * p_.r_C;   // (4.62)
   r.slip = b.slip;
-  r.F_K_applied = op.clamp == ClampMode::clamping_force ? op.F_K_applied : kNaN;
+  r.F_K_applied = op.clamp == ClampMode::clamping_force ? op.F_K_applied : nan;
 
   const double tol = 1e-9;
   if (op.s < p_.s_min - tol || op.s > p_.s_max + tol || T_C < p_.torque_min - tol || T_C > p_.torque_max + tol ||
@@ -366,7 +364,7 @@ CvtResult CvtModel::evaluate_tc(const CvtOperatingPoint& op, double T_C, double 
     // Unloaded (or reversed) belt: the thesis's algorithm is undefined (F_P0 step = 0).
     r.flags |= T_C == 0.0 ? kZeroTorque : kTorqueReversal;
     r.F_K = op.clamp == ClampMode::clamping_force ? op.F_K_applied : 0.0;
-    r.v_K = kNaN;
+    r.v_K = nan;
     r.bearings_prim = bearing_losses(true, p_.r_C, op.omega_C, r.F_K, r.T_over_r);
     r.bearings_sec = bearing_losses(false, r.r_D, r.omega_D, r.F_K, r.T_over_r);
     r.T_L_prim = r.bearings_prim.loss_torque();
@@ -380,7 +378,7 @@ CvtResult CvtModel::evaluate_tc(const CvtOperatingPoint& op, double T_C, double 
       r.T_2 = -r.T_L_sec;
       r.eta_L_prim = r.eta_L_sec = r.eta_SYS = 0.0;  // no power transmitted
     } else {
-      r.eta_PB = r.eta_L_prim = r.eta_L_sec = r.eta_SYS = r.P_loss_belt = r.T_D = r.T_2 = kNaN;
+      r.eta_PB = r.eta_L_prim = r.eta_L_sec = r.eta_SYS = r.P_loss_belt = r.T_D = r.T_2 = nan;
     }
     return r;
   }
@@ -399,10 +397,10 @@ CvtResult CvtModel::evaluate_tc(const CvtOperatingPoint& op, double T_C, double 
       r.T_L_prim = r.bearings_prim.loss_torque();
       r.T_L_sec = r.bearings_sec.loss_torque();
       r.T_1 = T_C + r.T_L_prim;
-      r.eta_PB = r.eta_L_sec = r.eta_SYS = r.P_loss_belt = r.T_D = r.T_2 = r.v_KC = kNaN;
+      r.eta_PB = r.eta_L_sec = r.eta_SYS = r.P_loss_belt = r.T_D = r.T_2 = r.v_KC = nan;
       r.eta_L_prim = T_C / r.T_1;
       r.mu_D_required = cbD * r.T_over_r / (p_.lambda * op.F_K_applied);
-      r.sigma.fill(kNaN);
+      r.sigma.fill(nan);
       return r;
     }
   }
@@ -413,7 +411,7 @@ CvtResult CvtModel::evaluate_tc(const CvtOperatingPoint& op, double T_C, double 
     solve_l0(r, b, v_K);
   }
   if (r.flags & kNoSolution) {
-    r.eta_PB = r.eta_L_prim = r.eta_L_sec = r.eta_SYS = r.P_loss_belt = r.T_D = r.T_2 = r.T_1 = r.F_K = kNaN;
+    r.eta_PB = r.eta_L_prim = r.eta_L_sec = r.eta_SYS = r.P_loss_belt = r.T_D = r.T_2 = r.T_1 = r.F_K = nan;
     return r;
   }
   finish(r, b);
@@ -515,9 +513,9 @@ void CvtModel::solve_l0(CvtResult& r, const BeltShape& b, double v_K) {
   const double cb = std::cos(p.beta_D);
   r.F_K = v_K * cb * r.T_over_r / (p.lambda * p.mu_D);
   r.v_KD = v_K;
-  r.v_KC = kNaN;
-  r.sigma.fill(kNaN);
-  r.F_N_peak.fill(kNaN);
+  r.v_KC = nan;
+  r.sigma.fill(nan);
+  r.F_N_peak.fill(nan);
   const bool split = p.lambda == 1 && p.mu_SU > 0.0;
   const double loss_fraction = split ? (p.mu_SU / p.mu_D) * (cb / p.lambda) * b.mean_slip() : 0.0;
   r.P_loss_belt = loss_fraction * r.T_over_r * r.v_PB;
@@ -537,7 +535,7 @@ void CvtModel::finish(CvtResult& r, const BeltShape& b) {
     // A tiny T_C at speed: the centrifugally clamped belt's slip loss exceeds T_C ω_C, so the
     // output torque would reverse. Outside the model: flagged, no efficiency.
     r.flags |= kTorqueReversal;
-    r.eta_PB = kNaN;
+    r.eta_PB = nan;
   }
   r.mu_D_required = std::cos(p.beta_D) * Tr / (p.lambda * r.F_K);
   r.T_C_capacity = p.r_C * p.lambda * p.mu_D * r.F_K / std::cos(p.beta_D);

@@ -3,19 +3,19 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
+
+#include "mechsim/models/constants.h"
 
 namespace mechsim::models::cvt {
 
 namespace {
-constexpr double kPi = std::numbers::pi;
 
 // (5.2)–(5.4) with R, r the principal relative radii.
 double elliptic_stress(double F_N, double R1, double R2, double E_R) {
   const double R = std::max(R1, R2), r = std::min(R1, R2);  // (5.8), (5.9)
   const HorowitzCoefficients h = horowitz_coefficients(R / r);
   const double k = std::cbrt(3.0 * F_N * r / E_R);
-  return 3.0 * F_N / (2.0 * kPi * (h.mu * k) * (h.nu * k));
+  return 3.0 * F_N / (2.0 * pi * (h.mu * k) * (h.nu * k));
 }
 }  // namespace
 
@@ -39,11 +39,11 @@ LinkCurvatures design_link_curvatures(const CvtParams& p) {
   double r11 = 0.0, r12 = 0.0;
   for (double rD : p.r_D_design) {
     if (p.l_D >= p.t_D) {  // (5.24), (5.25)
-      r12 += E * rD * p.t_D * p.t_D / (4.0 * p.l_D * nu3 * kPi * rD * sig + E * p.t_D * p.t_D * sb);
-      r11 += E * om * p.t_D * p.t_D / (4.0 * p.l_D * nu3 * kPi * sig);
+      r12 += E * rD * p.t_D * p.t_D / (4.0 * p.l_D * nu3 * pi * rD * sig + E * p.t_D * p.t_D * sb);
+      r11 += E * om * p.t_D * p.t_D / (4.0 * p.l_D * nu3 * pi * sig);
     } else {  // (5.28), (5.29)
-      r11 += E * p.l_D * p.l_D / (4.0 * nu3 * kPi * p.t_D * sig);
-      r12 += E * p.l_D * p.l_D * om * rD / (4.0 * nu3 * kPi * rD * p.t_D * sig + E * p.l_D * p.l_D * om * sb);
+      r11 += E * p.l_D * p.l_D / (4.0 * nu3 * pi * p.t_D * sig);
+      r12 += E * p.l_D * p.l_D * om * rD / (4.0 * nu3 * pi * rD * p.t_D * sig + E * p.l_D * p.l_D * om * sb);
     }
   }
   c.r11 = r11 / static_cast<double>(p.r_D_design.size());
@@ -63,7 +63,7 @@ double sigma_link_ring(double F_N, const CvtParams& p, const LinkCurvatures& c) 
   if (F_N <= 0.0) return 0.0;
   const double rC2 = -p.r_C / std::sin(p.beta_C);  // (5.30)
   const double r = c.r22 * rC2 / (c.r22 + rC2);    // (5.31)
-  return std::sqrt(F_N * p.E_R / (2.0 * kPi * r * p.l_C));  // (5.14)
+  return std::sqrt(F_N * p.E_R / (2.0 * pi * r * p.l_C));  // (5.14)
 }
 
 double shear_ratio_line(double x) { return x - x * x / std::sqrt(1.0 + x * x); }
@@ -89,7 +89,7 @@ double c_hz_max(double b, double* zeta_at) {
 RockingEdgeStress sigma_link_link(double F_P, const CvtParams& p) {
   RockingEdgeStress s;
   if (F_P <= 0.0) return s;
-  s.sigma_line = std::sqrt(F_P * p.E_R / (kPi * p.rocking_radius * p.l_E));  // (5.35), r = r_E/2
+  s.sigma_line = std::sqrt(F_P * p.E_R / (pi * p.rocking_radius * p.l_E));  // (5.35), r = r_E/2
   s.b_tilde = 2.0 * s.sigma_line * p.rho() / p.E_R;                         // (5.43)
   s.c_max = c_hz_max(s.b_tilde, &s.zeta_max);
   s.sigma_eq = s.c_max * s.sigma_line / 0.3;  // (5.49)
@@ -98,8 +98,8 @@ RockingEdgeStress sigma_link_link(double F_P, const CvtParams& p) {
 
 double sigma_support(double F_N, const CvtParams& p) { return std::max(F_N, 0.0) / p.A_SU; }
 
-double admissible_force_disc(const CvtParams& p) { return kPi * p.l_D * p.t_D * p.sigma_admissible / 6.0; }
-double admissible_force_ring(const CvtParams& p) { return kPi * p.t_C * p.l_C * p.sigma_admissible / 4.0; }
+double admissible_force_disc(const CvtParams& p) { return pi * p.l_D * p.t_D * p.sigma_admissible / 6.0; }
+double admissible_force_ring(const CvtParams& p) { return pi * p.t_C * p.l_C * p.sigma_admissible / 4.0; }
 double admissible_force_support(const CvtParams& p) { return p.A_SU * p.sigma_admissible; }
 
 }  // namespace mechsim::models::cvt

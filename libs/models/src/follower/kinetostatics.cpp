@@ -6,10 +6,11 @@
 #include <stdexcept>
 #include <string>
 
+#include "mechsim/models/constants.h"
+
 namespace mechsim::models::follower {
 
 namespace {
-constexpr double two_pi = 2.0 * std::numbers::pi;
 constexpr double angle_tolerance = 1e-9;  // intervals built from degrees touch up to rounding
 }  // namespace
 

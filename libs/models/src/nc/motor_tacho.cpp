@@ -6,11 +6,12 @@
 #include <stdexcept>
 #include <vector>
 
+#include "mechsim/models/constants.h"
+
 namespace mechsim::models::nc {
 
 namespace {
 
-constexpr double two_pi = 2 * std::numbers::pi;
 using Complex = std::complex<double>;
 
 Complex complex_pair_pole(const MotorTachoParams& p) {

@@ -1,12 +1,8 @@
 #include "mechsim/models/nc/slide_drive_data.h"
 
-#include <numbers>
+#include "mechsim/models/constants.h"
 
 namespace mechsim::models::nc {
-
-namespace {
-constexpr double pi = std::numbers::pi;
-}
 
 SlideDriveData SlideDriveData::report_cnc200() {
   SlideDriveData data;

@@ -1,14 +1,13 @@
 #include "mechsim/models/nc/slide_torsion.h"
 
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
+
+#include "mechsim/models/constants.h"
 
 namespace mechsim::models::nc {
 
 namespace {
-
-constexpr double two_pi = 2 * std::numbers::pi;
 
 struct TwoInertias {
   double drive_end;  // I1 = I_kopp + I_sp/2
