@@ -460,7 +460,7 @@ TEST_F(VendorRuns, ConcurrentRunsOnDifferentLayoutsDoNotSeeEachOther) {
 
 TEST_F(VendorRuns, AKilledFastDdsNodeLeavesNoSharedMemoryBehind) {
   REQUIRE_LAYOUT("fastdds");
-  pid_t launcher = spawn(args("cam_press.yaml", "k", {"--dds", "fastdds", "--end", "600 s"}), log("k"));
+  pid_t launcher = spawn(args("cam_press.yaml", "k", {"--dds", "fastdds", "--end", "600 s", "--set", "processes=per_participant"}), log("k"));
   // Running: the follower's output log grows.
   fs::path follower_log;
   pid_t follower = -1;

@@ -23,8 +23,10 @@ const std::string kCamPress = scene_path("cam_press.yaml");
 
 class Launch : public RunFolderTest {
  protected:
+  // A process per node: these tests kill, stop and read the logs of the cam's and the
+  // follower's processes (the default layout is checked in placement_test.cpp).
   std::vector<std::string> launch_args(const std::string& tag, std::vector<std::string> extra = {}) const {
-    return RunFolderTest::launch_args(kCamPress, tag, std::move(extra));
+    return RunFolderTest::launch_args_a_process_each(kCamPress, tag, std::move(extra));
   }
 };
 

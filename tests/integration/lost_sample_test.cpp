@@ -19,12 +19,14 @@ using json = nlohmann::json;
 
 class LostSample : public RunFolderTest, public ::testing::WithParamInterface<const char*> {};
 
+// A process per node: the sample is lost between processes (in one process the members hand
+// samples over in memory and read the cam's log in the group's).
 TEST_P(LostSample, ALostWriteIsSentAgainAndTheRunEndsByteIdentical) {
   const std::string vendor = GetParam();
-  const CommandResult whole = run(launch_args(scene_path("cam_press.yaml"), "whole", {"--dds", vendor}), log("whole"), 240);
+  const CommandResult whole = run(launch_args_a_process_each(scene_path("cam_press.yaml"), "whole", {"--dds", vendor}), log("whole"), 240);
   ASSERT_EQ(whole.exit_code, 0) << whole.output;
   // The cam's sample of step 500 (of 2 000) never goes out.
-  const CommandResult lossy = run(launch_args(scene_path("cam_press.yaml"), "lossy",
+  const CommandResult lossy = run(launch_args_a_process_each(scene_path("cam_press.yaml"), "lossy",
                                               {"--dds", vendor, "--set", "participants.cam.testing.lose_write_of_step=500"}),
                                   log("lossy"), 240);
   ASSERT_EQ(lossy.exit_code, 0) << lossy.output;

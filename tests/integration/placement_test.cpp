@@ -47,7 +47,7 @@ class Placement : public RunFolderTest {
   // the grouped run's nodes all write to the group's log (one process).
   void expect_one_process_gives_the_same_bytes(const std::string& scene, const std::string& vendor) {
     const std::vector<std::string> names = participants_of(scene);
-    const json apart = launch(scene, vendor + "-apart", {"--dds", vendor});
+    const json apart = launch(scene, vendor + "-apart", {"--dds", vendor, "--set", "processes=per_participant"});
     std::vector<std::string> together_args{"--dds", vendor};
     for (auto& a : group_of(names, "all")) together_args.push_back(a);
     const json together = launch(scene, vendor + "-together", together_args);
@@ -93,7 +93,7 @@ TEST_F(Placement, AMixedVendorGroupNextToANodeProcessIsByteIdentical) {
 // vendor; with the mixed layout (cvt and follower on Fast DDS, cam on Cyclone) and N = 1 the
 // two Fast DDS members share one DomainParticipant in one process beside the Cyclone one.
 TEST_F(Placement, PackedProcessesPerVendorAreByteIdentical) {
-  const json apart = launch("press_line.yaml", "per-participant", {"--dds", "mixed"});
+  const json apart = launch("press_line.yaml", "per-participant", {"--dds", "mixed", "--set", "processes=per_participant"});
   const json packed = launch("press_line.yaml", "packed", {"--dds", "mixed", "--set", "processes=1"});
   ASSERT_FALSE(HasFailure());
   const auto log_of = [&](const char* node) { return fs::path(packed["nodes"][node]["log"].get<std::string>()).filename(); };
@@ -104,6 +104,26 @@ TEST_F(Placement, PackedProcessesPerVendorAreByteIdentical) {
   EXPECT_EQ(apart["steps"], packed["steps"]);
   expect_identical_node_outputs(run_folder("per-participant"), run_folder("packed"), apart,
                                 "a process per participant and processes: 1 (mixed vendors)");
+}
+
+// processes: auto, the default (docs/scenes.md): on one host a vendor's participants share
+// one process, an FMU keeps its own, and the bytes are those of a process each.
+TEST_F(Placement, TheDefaultPutsAVendorsParticipantsIntoOneProcessWithTheSameBytes) {
+  const json apart = launch("press_line.yaml", "each", {"--set", "processes=per_participant"});
+  const json automatic = launch("press_line.yaml", "auto", {});
+  ASSERT_FALSE(HasFailure());
+  for (const char* node : {"cvt", "cam", "follower"}) {
+    EXPECT_EQ(fs::path(automatic["nodes"][node]["log"].get<std::string>()).filename(), "process-auto_cyclone_1.log") << node;
+    EXPECT_EQ(fs::path(apart["nodes"][node]["log"].get<std::string>()).filename(), std::string(node) + ".log") << node;
+  }
+  expect_identical_node_outputs(run_folder("each"), run_folder("auto"), apart, "a process each and the default layout");
+  // The mixed layout: the one Cyclone participant stays a node process, the two Fast DDS
+  // ones share a process.
+  const json mixed = launch("press_line.yaml", "mixed", {"--dds", "mixed"});
+  ASSERT_FALSE(mixed.is_null());
+  EXPECT_EQ(fs::path(mixed["nodes"]["cam"]["log"].get<std::string>()).filename(), "cam.log");
+  EXPECT_EQ(fs::path(mixed["nodes"]["cvt"]["log"].get<std::string>()).filename(), "process-auto_fastdds_1.log");
+  expect_identical_node_outputs(run_folder("each"), run_folder("mixed"), apart, "a process each and the default layout, mixed");
 }
 
 // A node of a group that fails ends the run like a node process that fails: the reason is

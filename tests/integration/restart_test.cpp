@@ -96,12 +96,12 @@ class Restart : public RunFolderTest {
   // (a participant's `testing:` seam among them).
   pid_t run_plain_then_start_killable(const std::vector<std::string>& more) {
     const std::vector<std::string> extra{"--end", "1 s"};
-    CommandResult plain = run(launch_args(scene_path("nc_slide_loop_1ms.yaml"), "plain", extra), log("plain"), 120);
+    CommandResult plain = run(launch_args_a_process_each(scene_path("nc_slide_loop_1ms.yaml"), "plain", extra), log("plain"), 120);
     EXPECT_EQ(plain.exit_code, 0) << plain.output;
     std::vector<std::string> args = extra;
     args.insert(args.end(), {"--set", "faults.restart=on_failure", "--set", "faults.checkpoint_every=100"});
     args.insert(args.end(), more.begin(), more.end());
-    return spawn(launch_args(scene_path("nc_slide_loop_1ms.yaml"), "killed", args), log("killed"));
+    return spawn(launch_args_a_process_each(scene_path("nc_slide_loop_1ms.yaml"), "killed", args), log("killed"));
   }
   // Every node's output and events files of two runs, byte for byte.
   void expect_identical_outputs(const fs::path& a, const fs::path& b, const std::vector<std::string>& nodes) {
@@ -135,13 +135,13 @@ class Restart : public RunFolderTest {
     }
     std::uniform_int_distribution<std::size_t> node_dist(0, victims.size() - 1);
 
-    CommandResult plain = run(launch_args(scene_path(scene), "plain", extra), log("plain"), 180);
+    CommandResult plain = run(launch_args_a_process_each(scene_path(scene), "plain", extra), log("plain"), 180);
     ASSERT_EQ(plain.exit_code, 0) << plain.output;
 
     std::vector<std::string> args = extra;
     args.insert(args.end(), {"--set", "faults.restart=on_failure", "--set", "faults.checkpoint_every=" + std::to_string(every),
                              "--set", "faults.restart_limit=" + std::to_string(kills)});
-    const pid_t launcher = spawn(launch_args(scene_path(scene), "killed", args), log("killed"));
+    const pid_t launcher = spawn(launch_args_a_process_each(scene_path(scene), "killed", args), log("killed"));
     StopOnExit stop{launcher};
     const fs::path run = wait_for_run_folder("killed");
     ASSERT_FALSE(run.empty());
@@ -268,7 +268,7 @@ TEST_F(Restart, SamplesLostAtTheResumeAreSentAgain) {
 // More deaths of one participant than faults.restart_limit: the run stops as without
 // restart (exit 1, every process stopped), naming the node and its restarts.
 TEST_F(Restart, MoreDeathsThanTheLimitStopTheRunCleanly) {
-  const pid_t launcher = spawn(launch_args(scene_path("nc_slide_loop_1ms.yaml"), "limit",
+  const pid_t launcher = spawn(launch_args_a_process_each(scene_path("nc_slide_loop_1ms.yaml"), "limit",
                                            {"--end", "600 s", "--set", "faults.restart=on_failure", "--set",
                                             "faults.checkpoint_every=50", "--set", "faults.restart_limit=1"}),
                                log("limit"));

@@ -74,6 +74,14 @@ class RunFolderTest : public ::testing::Test {
     a.insert(a.end(), extra.begin(), extra.end());
     return a;
   }
+  // The same with every participant in a process of its own (`processes: per_participant`),
+  // for tests that kill, stop or read the log of one node's process: by default the
+  // launcher puts a single host's participants of a vendor into one process.
+  std::vector<std::string> launch_args_a_process_each(const std::string& scene_file, const std::string& tag,
+                                                      std::vector<std::string> extra = {}) const {
+    extra.insert(extra.end(), {"--set", "processes=per_participant"});
+    return launch_args(scene_file, tag, std::move(extra));
+  }
   std::string log(const std::string& tag) const { return (dir_ / (tag + ".log")).string(); }
   nlohmann::json summary(const std::string& tag) const {
     return nlohmann::json::parse(slurp((dir_ / (tag + ".json")).string()));

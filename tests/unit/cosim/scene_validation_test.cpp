@@ -256,13 +256,15 @@ TEST(SceneValidation, ProcessGroups) {
 // `processes:` (docs/scenes.md): per_participant, per_core or a number of groups per vendor.
 TEST(SceneValidation, ProcessLayout) {
   auto with = [](const std::string& value) { return cam_press_with("mode: lockstep", "mode: lockstep\nprocesses: " + value); };
-  EXPECT_EQ(config::load_scene(testing::shipped_scene("cam_press.yaml")).processes.kind, config::ProcessLayout::Kind::per_participant);
+  EXPECT_EQ(config::load_scene(testing::shipped_scene("cam_press.yaml")).processes.kind, config::ProcessLayout::Kind::automatic);
+  EXPECT_EQ(config::load_scene(write_scene(with("auto"))).processes.kind, config::ProcessLayout::Kind::automatic);
+  EXPECT_EQ(config::load_scene(write_scene(with("per_participant"))).processes.kind, config::ProcessLayout::Kind::per_participant);
   EXPECT_EQ(config::load_scene(write_scene(with("per_core"))).processes.kind, config::ProcessLayout::Kind::per_core);
   const config::Scene three = config::load_scene(write_scene(with("3")));
   EXPECT_EQ(three.processes.kind, config::ProcessLayout::Kind::count);
   EXPECT_EQ(three.processes.count, 3);
   for (const char* bad : {"per_cor", "0", "65", "-1", "2.5", "[1]"})
-    expect_refused(with(bad), "processes", "per_participant, per_core or a number of process groups per DDS vendor (1..64)");
+    expect_refused(with(bad), "processes", "auto, per_participant, per_core or a number of process groups per DDS vendor (1..64)");
   // Groups carry no per-participant identity.
   expect_refused(with("per_core\ndds: {security: /tmp/no-such-folder}"), "processes", "not available with dds.security");
 }

@@ -65,5 +65,36 @@ TEST(ProcessPacking, EachHostGetsItsOwnGroups) {
   for (const char* p : {"cvt", "cam_1", "follower_1", "cam_2", "follower_2", "follower_4"}) EXPECT_EQ(g.at(p), "auto_cyclone_1") << p;
 }
 
+// processes: auto (the default): on one host, unsecured, a vendor's participants share one
+// process (a second group per core only past 8 of them); a vendor with one participant and
+// an FMU keep a process of their own; several hosts: a process each.
+TEST(ProcessPacking, TheDefaultPacksAVendorsParticipantsOfOneHostTogether) {
+  const std::string cam_press = MECHSIM_SOURCE_DIR "/config/scenes/cam_press.yaml";
+  const auto two = groups(pack_processes(config::load_scene(cam_press), 2));
+  EXPECT_EQ(two.at("cam"), "auto_cyclone_1");
+  EXPECT_EQ(two.at("follower"), "auto_cyclone_1");
+  // Nine participants of one vendor: past 8, a second group (2 cores here).
+  const auto nine = groups(pack_processes(config::load_scene(kLineShaft, {"processes=auto"}), 2));
+  ASSERT_EQ(nine.size(), 9u);
+  EXPECT_EQ(nine.at("cvt"), "auto_cyclone_1");
+  EXPECT_EQ(nine.at("follower_4"), "auto_cyclone_2");
+  // On one core: one group for all nine.
+  for (const auto& [p, group] : groups(pack_processes(config::load_scene(kLineShaft, {"processes=auto"}), 1)))
+    EXPECT_EQ(group, "auto_cyclone_1") << p;
+  // A vendor with a single participant: a node process of its own.
+  const auto mixed = groups(pack_processes(config::load_scene(cam_press, {"participants.cam.dds=fastdds"}), 2));
+  EXPECT_TRUE(mixed.empty());
+  // Across hosts, a process per participant.
+  EXPECT_TRUE(pack_processes(config::load_scene(kLineShaft, {"processes=auto", "dds.domain=5", "hosts.b.address=10.0.0.2",
+                                                             "participants.cam_3.host=b"}),
+                             2)
+                  .empty());
+}
+
+TEST(ProcessPacking, TheDefaultKeepsAnFmuInAProcessOfItsOwn) {
+  const auto g = groups(pack_processes(config::load_scene(MECHSIM_SOURCE_DIR "/config/scenes/fmu_speed_lag.yaml"), 2));
+  for (const auto& [p, group] : g) ADD_FAILURE() << p << " packed into " << group << ": an FMU participant";
+}
+
 }  // namespace
 }  // namespace mechsim::launch
