@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "mechsim/cosim/coupling/scheme.h"
+#include "mechsim/cosim/coupling/coupling_spec.h"
 
 namespace mechsim::launch {
 

@@ -5,7 +5,8 @@
 #include "mechsim/fmi/co_simulation_block.h"
 
 #include "mechsim/config/units.h"
-#include "mechsim/cosim/coupling/scheme.h"
+#include "coupling/cut_plan.h"
+#include "mechsim/cosim/coupling/coupling_spec.h"
 
 #include <algorithm>
 #include <cmath>
@@ -50,50 +51,6 @@ std::vector<int> find_cycle(const std::vector<std::vector<int>>& adjacent) {
   for (int v = 0; v < n; ++v)
     if (color[v] == 0 && visit(v)) return cycle;
   return {};
-}
-
-// Both sides of a connection whose coupling element is joined by the interface-Jacobian
-// scheme: the node types must offer a cut port each, one loaded and one driven by the torque.
-void plan_interface_jacobian_cut(const config::Scene& scene, const config::ConnectionSpec& c, PlannedNode& from,
-                                 PlannedNode& to) {
-  const std::string where = c.key_path + ".coupling";
-  const coupling::CouplingSpec spec = coupling::parse_coupling(*c.coupling);
-  for (const PlannedNode* n : {&from, &to})
-    if (!n->type->cut_port)
-      refuse(scene, where, "expected both participants of an interface_jacobian coupling to offer a cut port; a " +
-                               n->type->name + " has none");
-  if (from.type->cut_port->twist_sign == to.type->cut_port->twist_sign)
-    refuse(scene, where, "expected one participant the coupling torque loads (a tachometer) and one it drives (a slide)");
-  if (c.order != config::EdgeOrder::jacobi)
-    refuse(scene, c.key_path + ".order", "expected order: jacobi (the interface_jacobian coupling exchanges one prediction per side and step)");
-  for (const auto& other : scene.connections)
-    if (other.from == c.to && other.to == c.from)
-      refuse(scene, other.key_path, "expected no connection " + c.to + " -> " + c.from + ": the interface_jacobian coupling of " +
-                                        c.key_path + " joins them both ways");
-  for (PlannedNode* n : {&from, &to}) {
-    const CutPort& port = *n->type->cut_port;
-    PlannedNode& partner = n == &from ? to : from;
-    if (n->cut) refuse(scene, where, "expected at most one interface_jacobian cut per participant ('" + n->name() + "' has two)");
-    PlannedCut cut;
-    cut.partner = partner.name();
-    cut.topic = n->name() + "/coupling";
-    cut.partner_topic = partner.name() + "/coupling";
-    cut.type = transport::find_topic_type("CouplingPrediction");
-    cut.torque_input = n->block->input_index(port.torque_input);
-    cut.angle_output = n->block->output_index(port.angle_output);
-    cut.speed_output = n->block->output_index(port.speed_output);
-    if (cut.torque_input < 0 || cut.angle_output < 0 || cut.speed_output < 0 || !cut.type)
-      throw std::logic_error("cut port of node type " + n->type->name + " does not match its block in torque mode");
-    for (int o : {cut.angle_output, cut.speed_output})
-      if (!n->block->outputs()[o].feedthrough.empty())
-        throw std::logic_error("cut port of node type " + n->type->name + ": angle and speed must not depend on inputs directly");
-    cut.twist_sign = port.twist_sign;
-    cut.levels = spec.levels;
-    cut.stiffness = spec.params.stiffness;
-    cut.damping = spec.params.damping;
-    cut.key_path = where;
-    n->cut = std::move(cut);
-  }
 }
 
 // A port-level connection `from: P.field, to: Q.input`: P's topic field feeds Q's block
@@ -432,7 +389,7 @@ void ScenePlan::resolve_edges() {
     PlannedNode& from = node(c.from);
     PlannedNode& to = node(c.to);
     if (c.coupling && coupling::parse_coupling(*c.coupling).scheme == coupling::CouplingScheme::interface_jacobian)
-      plan_interface_jacobian_cut(scene, c, from, to);
+      coupling::plan_interface_jacobian_cut(scene, c, from, to);
     else if (!c.from_field.empty())
       plan_port_connection(scene, c, from, to);
     else

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "mechsim/cosim/coupling/scheme.h"
+#include "mechsim/cosim/coupling/coupling_spec.h"
 #include "mechsim/cosim/nc_params.h"
 
 namespace mechsim::tools::nc_analyses {

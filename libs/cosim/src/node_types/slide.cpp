@@ -3,7 +3,7 @@
 // angle and speed across the coupling and evaluates it itself, or (interface_jacobian) takes
 // the coupling torque from the coupling solve.
 #include "mechsim/cosim/catalog.h"
-#include "mechsim/cosim/coupling/scheme.h"
+#include "mechsim/cosim/coupling/coupling_spec.h"
 #include "mechsim/cosim/nc_params.h"
 #include "mechsim/models/nc/slide_block.h"
 

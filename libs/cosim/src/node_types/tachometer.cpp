@@ -3,7 +3,7 @@
 // across the coupling, the spindle's angle and speed (compliant) or the coupling torque
 // (torque; interface_jacobian, where the torque comes from the coupling solve).
 #include "mechsim/cosim/catalog.h"
-#include "mechsim/cosim/coupling/scheme.h"
+#include "mechsim/cosim/coupling/coupling_spec.h"
 #include "mechsim/cosim/nc_params.h"
 #include "mechsim/models/nc/motor_tacho_block.h"
 

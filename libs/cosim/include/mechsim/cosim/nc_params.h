@@ -16,6 +16,6 @@ models::nc::SlideDriveData parse_slide_drive_data(const config::ConfigNode& para
 models::nc::SlideBlockOptions parse_slide_options(const config::ConfigNode& params);
 models::nc::ServoAmplifierParams parse_servo_amplifier_params(const config::ConfigNode& params);
 
-// The coupling element of a connection (its scheme, stiffness, damping): coupling/scheme.h.
+// The coupling element of a connection (its scheme, stiffness, damping): coupling/coupling_spec.h.
 
 }  // namespace mechsim::cosim

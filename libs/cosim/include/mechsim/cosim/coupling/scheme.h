@@ -1,16 +1,13 @@
 // The coupling schemes of a connection that crosses a coupling element (`coupling: {scheme,
 // stiffness, damping, levels}`, docs/nc-loop.md "Coupling schemes"): the one place that
-// names them. A scene's text is parsed once into CouplingScheme; the plan, the node types
-// and the tools dispatch on the enum.
+// names them. A scene's text is parsed once into CouplingScheme (coupling_spec.h); the plan,
+// the node types and the tools dispatch on the enum. Pure: no YAML.
 #pragma once
 
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include "mechsim/config/config_node.h"
-#include "mechsim/models/nc/coupling.h"
 
 namespace mechsim::cosim::coupling {
 
@@ -26,13 +23,8 @@ const std::string& to_string(CouplingScheme scheme);
 // std::nullopt for a word that names no scheme.
 std::optional<CouplingScheme> parse_coupling_scheme(std::string_view name);
 
-// The coupling element of a connection, as the scene writes it.
-struct CouplingSpec {
-  CouplingScheme scheme = CouplingScheme::compliant;
-  models::nc::CouplingParams params;
-  int levels = 10;  // interface_jacobian: torque levels per macro step (1..kMaxLevels)
-};
-// Throws config::ConfigError naming the key (an unknown scheme lists the known ones).
-CouplingSpec parse_coupling(const config::ConfigNode& coupling);
+// Most torque levels per macro step of the interface-Jacobian scheme: what the
+// CouplingPrediction topic carries (idl/coupling.idl).
+inline constexpr int kMaxLevels = 16;
 
 }  // namespace mechsim::cosim::coupling
