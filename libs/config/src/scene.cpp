@@ -573,11 +573,18 @@ ConnectionSpec parse_connection(const Scene& scene, const ConfigNode& c) {
   return spec;
 }
 
+// The entries of the optional list section `key` of the scene, each handed to `entry` in order.
+template <class Entry>
+void for_each_entry(const Scene& scene, const char* key, const std::string& not_a_list, Entry entry) {
+  auto list = scene.root.optional_child(key);
+  if (!list) return;
+  if (!list->is_sequence()) list->fail(not_a_list);
+  for (std::size_t i = 0; i < list->size(); ++i) entry(list->at(i));
+}
+
 void parse_connections(Scene& scene) {
-  auto conns = scene.root.optional_child("connections");
-  if (!conns) return;
-  if (!conns->is_sequence()) conns->fail("expected a list of connections");
-  for (std::size_t i = 0; i < conns->size(); ++i) scene.connections.push_back(parse_connection(scene, conns->at(i)));
+  for_each_entry(scene, "connections", "expected a list of connections",
+                 [&](const ConfigNode& c) { scene.connections.push_back(parse_connection(scene, c)); });
 }
 
 // A scalar 'participant.output' naming a participant of the scene.
@@ -589,10 +596,8 @@ SignalRef parse_scene_signal(const Scene& scene, const ConfigNode& s) {
 
 // `compare: [participant.output, ...]`.
 void parse_compare(Scene& scene) {
-  auto cmp = scene.root.optional_child("compare");
-  if (!cmp) return;
-  if (!cmp->is_sequence()) cmp->fail("expected a list of signals 'participant.output'");
-  for (std::size_t i = 0; i < cmp->size(); ++i) scene.compare.push_back(parse_scene_signal(scene, cmp->at(i)));
+  for_each_entry(scene, "compare", "expected a list of signals 'participant.output'",
+                 [&](const ConfigNode& s) { scene.compare.push_back(parse_scene_signal(scene, s)); });
 }
 
 // A report figure `energy_balance: {supplied: [power signals], dissipated: [power signals],
@@ -651,10 +656,8 @@ ReportSpec parse_report_figure(const Scene& scene, const ConfigNode& r) {
 }
 
 void parse_report(Scene& scene) {
-  auto rep = scene.root.optional_child("report");
-  if (!rep) return;
-  if (!rep->is_sequence()) rep->fail("expected a list of figures such as {min: signal, at: signal, unit: deg}");
-  for (std::size_t i = 0; i < rep->size(); ++i) scene.report.push_back(parse_report_figure(scene, rep->at(i)));
+  for_each_entry(scene, "report", "expected a list of figures such as {min: signal, at: signal, unit: deg}",
+                 [&](const ConfigNode& r) { scene.report.push_back(parse_report_figure(scene, r)); });
 }
 
 }  // namespace
