@@ -6,7 +6,12 @@
 #include <optional>
 #include <string>
 
+#include "mechsim/cosim/coupling/scheme.h"
+
 namespace mechsim::bench {
+
+using cosim::coupling::CouplingScheme;
+using cosim::coupling::to_string;
 
 // Equal as data (flow or block style, key order aside): scalars by their text.
 bool same_yaml(const YAML::Node& a, const YAML::Node& b) {
@@ -53,7 +58,7 @@ std::optional<YAML::Node> quadratic_connections_of(const YAML::Node& scene_docum
   for (auto c : doc["connections"]) {
     const bool jacobi = text_of(c, "order", "jacobi") == "jacobi";
     const YAML::Node& edge = c;  // const: operator[] must not add keys
-    const bool interface_jacobian = edge["coupling"] && text_of(edge["coupling"], "scheme") == "interface_jacobian";
+    const bool interface_jacobian = edge["coupling"] && cosim::coupling::parse_coupling_scheme(text_of(edge["coupling"], "scheme")) == CouplingScheme::interface_jacobian;
     if (!jacobi || interface_jacobian || text_of(c, "reconstruction", "hold") == "quadratic") continue;
     c["reconstruction"] = "quadratic";
     changed = true;
@@ -107,7 +112,7 @@ void add_cut_variants(std::vector<SchemeVariant>& out, const YAML::Node& scene_d
   };
   for (const char* rec : {"hold", "linear", "quadratic"}) {
     YAML::Node e = YAML::Clone(element);
-    e["scheme"] = "compliant";
+    e["scheme"] = to_string(CouplingScheme::compliant);
     e.remove("levels");
     YAML::Node fwd = connection(a, b), back = connection(b, a);
     fwd["order"] = "jacobi";
@@ -116,21 +121,21 @@ void add_cut_variants(std::vector<SchemeVariant>& out, const YAML::Node& scene_d
     back["order"] = "jacobi";
     back["reconstruction"] = rec;
     SchemeVariant v;
-    v.name = std::string("compliant/") + rec;
-    v.family = "compliant";
+    v.name = to_string(CouplingScheme::compliant) + "/" + rec;
+    v.family = to_string(CouplingScheme::compliant);
     v.zero_order_hold_jacobi = std::string(rec) == "hold";
     v.document = with_cut({fwd, back});
     out.push_back(v);
   }
   for (int levels : {1, 2, 10}) {
     YAML::Node e = YAML::Clone(element);
-    e["scheme"] = "interface_jacobian";
+    e["scheme"] = to_string(CouplingScheme::interface_jacobian);
     e["levels"] = levels;
     YAML::Node fwd = connection(a, b);
     fwd["coupling"] = e;
     SchemeVariant v;
-    v.name = "interface_jacobian/" + std::to_string(levels);
-    v.family = "interface_jacobian";
+    v.name = to_string(CouplingScheme::interface_jacobian) + "/" + std::to_string(levels);
+    v.family = to_string(CouplingScheme::interface_jacobian);
     v.document = with_cut({fwd});
     out.push_back(v);
   }

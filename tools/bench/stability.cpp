@@ -42,7 +42,7 @@
 #include "mechsim/assess/stable_step.h"
 #include "mechsim/config/scene.h"
 #include "mechsim/cosim/divergence_guard.h"
-#include "mechsim/cosim/nc_params.h"
+#include "mechsim/cosim/coupling/coupling_spec.h"
 #include "mechsim/cosim/node_stepper.h"
 #include "mechsim/cosim/scene_plan.h"
 
@@ -89,8 +89,8 @@ std::vector<Cut> find_cuts(const config::Scene& scene) {
     }
     it->connections.push_back(i);
     if (c.coupling) {
-      const cosim::CouplingSpec spec = cosim::parse_coupling(*c.coupling);
-      it->interface_jacobian = it->interface_jacobian || spec.scheme == "interface_jacobian";
+      const cosim::coupling::CouplingSpec spec = cosim::coupling::parse_coupling(*c.coupling);
+      it->interface_jacobian = it->interface_jacobian || spec.scheme == cosim::coupling::CouplingScheme::interface_jacobian;
       it->stiffness = spec.params.stiffness;
     }
     if (c.order == config::EdgeOrder::jacobi && !(c.coupling && it->interface_jacobian)) it->has_jacobi = true;
@@ -105,14 +105,14 @@ std::vector<Variant> variants_of(const config::Scene& scene, const Cut& cut, boo
     for (std::size_t i : cut.connections)
       if (scene.connections[i].coupling) ij = i;
     for (int levels : quick ? std::vector<int>{10} : std::vector<int>{1, 2, 10})
-      out.push_back({"interface_jacobian, " + std::to_string(levels) + " level" + (levels > 1 ? "s" : ""),
+      out.push_back({cosim::coupling::to_string(cosim::coupling::CouplingScheme::interface_jacobian) + ", " + std::to_string(levels) + " level" + (levels > 1 ? "s" : ""),
                      {"connections[" + std::to_string(ij) + "].coupling.levels=" + std::to_string(levels)}});
     return out;
   }
   if (!cut.has_jacobi) return out;  // Gauss-Seidel only: nothing extrapolated, nothing to vary
   const std::string kind = [&] {
     for (std::size_t i : cut.connections)
-      if (scene.connections[i].coupling) return cosim::parse_coupling(*scene.connections[i].coupling).scheme + ", ";
+      if (scene.connections[i].coupling) return cosim::coupling::to_string(cosim::coupling::parse_coupling(*scene.connections[i].coupling).scheme) + ", ";
     return std::string("jacobi, ");
   }();
   for (const char* r : quick ? std::vector<const char*>{"hold", "linear"} : std::vector<const char*>{"hold", "linear", "quadratic"}) {

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "mechsim/cosim/nc_params.h"
+#include "mechsim/cosim/coupling/coupling_spec.h"
 
 namespace mechsim::assess {
 
@@ -65,7 +65,7 @@ std::optional<double> find_stable_step_below(const std::string& path, const std:
   double stiffness = 0.0;
   for (const auto& c : base.connections)
     if (c.coupling && stiffness <= 0) {
-      stiffness = cosim::parse_coupling(*c.coupling).params.stiffness;
+      stiffness = cosim::coupling::parse_coupling(*c.coupling).params.stiffness;
       a = c.from;
       b = c.to;
     }

@@ -274,8 +274,13 @@ void adaptive_solver_tolerances(SolverSpec& solver, double coupling_tolerance) {
   if (!solver.atol_written) solver.atol = solver.rtol * 1e-3;
 }
 
-Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
-  Scene scene;
+namespace {
+
+// The passes of load_scene, one per section, in the order the scene is validated (the first
+// error found is the one reported, so the order is part of the behaviour).
+
+// The document, with the overrides applied, and its top-level keys.
+void load_document(Scene& scene, const std::string& path, const std::vector<std::string>& overrides) {
   scene.file = path;
   scene.root = ConfigNode::load_file(path);
   for (const auto& o : overrides) scene.root.set_override(o.substr(0, o.find('=')),
@@ -284,11 +289,19 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   if (!root.is_map()) root.fail("expected a scene: a map with keys scene, time, participants, ...");
   root.allow_only({"scene", "description", "time", "mode", "rtf", "realtime", "dds", "hosts", "faults", "hang_timeout",
                    "processes", "participants", "connections", "compare", "report", "record", "design"});
+}
 
+// `scene:` and `description:`.
+void parse_identity(Scene& scene) {
+  const ConfigNode& root = scene.root;
   scene.name = root.string("scene");
   if (!valid_name(scene.name)) root.child("scene").fail("expected a name of letters, digits and '_'");
   if (root.has("description")) scene.description = root.string("description");
-  scene.time = parse_time(root.child("time"));
+}
+
+// `mode:` and `rtf:` (after `time:`, which a real-time run constrains).
+void parse_run_mode(Scene& scene) {
+  const ConfigNode& root = scene.root;
   if (root.has("mode")) scene.mode = root.choice("mode", {"lockstep", "realtime"}) == "realtime" ? RunMode::realtime : RunMode::lockstep;
   // Real-time pacing publishes on a fixed period (an NC loop's sample time).
   if (scene.mode == RunMode::realtime && scene.time.adaptive)
@@ -297,8 +310,13 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
     scene.rtf = root.number("rtf");
     if (!(scene.rtf > 0)) root.child("rtf").fail("expected a real-time factor > 0");
   }
+}
+
+// `realtime:`: the pacing settings, and the process settings every participant starts from
+// (returned: each participant's own realtime: goes over them).
+ProcessRealtimeSpec parse_realtime_section(Scene& scene) {
   ProcessRealtimeSpec scene_process_realtime;
-  if (auto rt = root.optional_child("realtime")) {
+  if (auto rt = scene.root.optional_child("realtime")) {
     rt->allow_only({"on_overrun", "wait", "spin_limit", "priority", "lock_memory", "cpus"});
     scene.realtime.on_overrun =
         rt->choice_or("on_overrun", {"continue", "abort"}, "continue") == "abort" ? OverrunPolicy::abort : OverrunPolicy::keep_going;
@@ -306,168 +324,204 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
     scene.realtime.spin_limit = rt->positive_quantity_or("spin_limit", dim::time, scene.realtime.spin_limit);
     scene_process_realtime = parse_process_realtime(*rt, scene_process_realtime);
   }
-  if (root.has("hang_timeout")) scene.hang_timeout = root.positive_quantity("hang_timeout", dim::time);
-  if (root.has("processes")) scene.processes = parse_process_layout(root.child("processes"));
-  if (auto dds = root.optional_child("dds")) {
-    dds->allow_only({"vendor", "domain", "security", "protection"});
-    if (dds->has("vendor")) scene.vendor = dds->choice("vendor", {"cyclone", "fastdds"});
-    if (dds->has("domain") && dds->string("domain") != "auto") {
-      long d = dds->integer("domain");
-      if (d < 0 || d > 232) dds->child("domain").fail("expected 'auto' or a domain id in 0..232");
-      scene.domain_id = static_cast<int>(d);
-    }
-    if (dds->has("security")) {
-      const std::string dir = dds->string("security");
-      if (dir.empty()) dds->child("security").fail("expected the folder of `mechsim security init DIR SCENE` (docs/security.md)");
-      // Relative to the scene file when written in it, to the working folder when given with
-      // --set; written back absolute, so that the run folder's copy of the scene names the
-      // same folder.
-      const std::filesystem::path p(dir);
-      const bool from_file = std::none_of(overrides.begin(), overrides.end(),
-                                          [](const std::string& o) { return o.rfind("dds.security=", 0) == 0; });
-      scene.security_dir =
-          std::filesystem::absolute(p.is_absolute() || !from_file ? p : std::filesystem::path(path).parent_path() / p).lexically_normal().string();
-      if (scene.security_dir.size() > 1 && scene.security_dir.back() == '/') scene.security_dir.pop_back();
-      scene.root.set_override("dds.security", scene.security_dir);
-    }
-    if (dds->has("protection")) {
-      scene.security_protection = dds->choice("protection", {"encrypt", "sign"});
-      if (scene.security_dir.empty())
-        dds->child("protection").fail("expected dds.security with it: protection chooses what DDS Security protects in a secured "
-                                      "run (docs/security.md, 'Protection')");
-    }
-  }
-  if (auto faults = root.optional_child("faults")) {
-    if (!faults->is_map())
-      faults->fail("expected a map {redundant_samples: auto|true|false, partition_grace: 2 s, restart: never|on_failure, "
-                   "restart_limit: N, checkpoint_every: N}");
-    faults->allow_only({"redundant_samples", "partition_grace", "restart", "restart_limit", "checkpoint_every"});
-    if (faults->has("restart")) scene.faults.restart = faults->choice("restart", {"never", "on_failure"});
-    scene.faults.restart_limit = faults->integer_or("restart_limit", scene.faults.restart_limit);
-    if (scene.faults.restart_limit < 1) faults->child("restart_limit").fail("expected a number of restarts >= 1");
-    scene.faults.checkpoint_every = faults->integer_or("checkpoint_every", scene.faults.checkpoint_every);
-    if (scene.faults.checkpoint_every < 1) faults->child("checkpoint_every").fail("expected a number of macro steps >= 1");
-    scene.faults.partition_grace = faults->positive_quantity_or("partition_grace", dim::time, scene.faults.partition_grace);
-    if (faults->has("redundant_samples")) {
-      const std::string r = faults->choice("redundant_samples", {"auto", "true", "false"});
-      scene.faults.redundant_samples = r == "true"    ? RedundantSamples::always
-                                       : r == "false" ? RedundantSamples::never
-                                                      : RedundantSamples::automatic;
-    }
-  }
-  scene.design = root.optional_child("design");
-  if (auto rec = root.optional_child("record")) scene.record = parse_record(*rec);
+  return scene_process_realtime;
+}
 
-  if (auto hosts = root.optional_child("hosts")) {
-    if (!hosts->is_map() || hosts->size() == 0) hosts->fail("expected a map of machines (name: {address: 10.0.0.2 or a host name})");
-    for (const std::string& name : hosts->keys()) {
-      ConfigNode h = hosts->child(name);
-      if (!valid_name(name)) h.fail("expected a host name of letters, digits and '_'");
-      if (!h.is_map()) h.fail("expected {address: an IPv4 address or a host name}");
-      h.allow_only({"address"});
-      HostSpec spec{name, h.string("address"), h.path()};
-      if (!valid_host_address(spec.address))
-        h.child("address").fail("expected an IPv4 address (10.0.0.2) or a host name (letters, digits, '-' and '.'), got '" + spec.address + "'");
-      for (const auto& other : scene.hosts)
-        if (other.address == spec.address) h.child("address").fail("expected each host once: " + other.key_path + " has the same address");
-      scene.hosts.push_back(spec);
-    }
-    // The agents and the nodes they start would need identities of their own: not done yet.
-    if (!scene.security_dir.empty())
-      hosts->fail("expected no hosts with dds.security: DDS security is not available for multi-host runs yet (docs/security.md)");
-  }
+// A path written in the scene at `dotted` is relative to the scene file, one given with --set
+// to the working folder: the absolute, normal form of either.
+std::string absolute_scene_path(const Scene& scene, const std::string& written, const std::string& dotted,
+                                const std::vector<std::string>& overrides) {
+  const std::filesystem::path p(written);
+  const bool from_file = std::none_of(overrides.begin(), overrides.end(),
+                                      [&](const std::string& o) { return o.rfind(dotted + "=", 0) == 0; });
+  return std::filesystem::absolute(p.is_absolute() || !from_file ? p : std::filesystem::path(scene.file).parent_path() / p)
+      .lexically_normal()
+      .string();
+}
 
-  const ConfigNode participants = root.child("participants");
+// `dds: {vendor, domain, security, protection}`.
+void parse_dds_section(Scene& scene, const std::vector<std::string>& overrides) {
+  auto dds = scene.root.optional_child("dds");
+  if (!dds) return;
+  dds->allow_only({"vendor", "domain", "security", "protection"});
+  if (dds->has("vendor")) scene.vendor = dds->choice("vendor", {"cyclone", "fastdds"});
+  if (dds->has("domain") && dds->string("domain") != "auto") {
+    long d = dds->integer("domain");
+    if (d < 0 || d > 232) dds->child("domain").fail("expected 'auto' or a domain id in 0..232");
+    scene.domain_id = static_cast<int>(d);
+  }
+  if (dds->has("security")) {
+    const std::string dir = dds->string("security");
+    if (dir.empty()) dds->child("security").fail("expected the folder of `mechsim security init DIR SCENE` (docs/security.md)");
+    // Written back absolute, so that the run folder's copy of the scene names the same folder.
+    scene.security_dir = absolute_scene_path(scene, dir, "dds.security", overrides);
+    if (scene.security_dir.size() > 1 && scene.security_dir.back() == '/') scene.security_dir.pop_back();
+    scene.root.set_override("dds.security", scene.security_dir);
+  }
+  if (dds->has("protection")) {
+    scene.security_protection = dds->choice("protection", {"encrypt", "sign"});
+    if (scene.security_dir.empty())
+      dds->child("protection").fail("expected dds.security with it: protection chooses what DDS Security protects in a secured "
+                                    "run (docs/security.md, 'Protection')");
+  }
+}
+
+// `faults: {redundant_samples, partition_grace, restart, restart_limit, checkpoint_every}`.
+void parse_faults_section(Scene& scene) {
+  auto faults = scene.root.optional_child("faults");
+  if (!faults) return;
+  if (!faults->is_map())
+    faults->fail("expected a map {redundant_samples: auto|true|false, partition_grace: 2 s, restart: never|on_failure, "
+                 "restart_limit: N, checkpoint_every: N}");
+  faults->allow_only({"redundant_samples", "partition_grace", "restart", "restart_limit", "checkpoint_every"});
+  if (faults->has("restart")) scene.faults.restart = faults->choice("restart", {"never", "on_failure"});
+  scene.faults.restart_limit = faults->integer_or("restart_limit", scene.faults.restart_limit);
+  if (scene.faults.restart_limit < 1) faults->child("restart_limit").fail("expected a number of restarts >= 1");
+  scene.faults.checkpoint_every = faults->integer_or("checkpoint_every", scene.faults.checkpoint_every);
+  if (scene.faults.checkpoint_every < 1) faults->child("checkpoint_every").fail("expected a number of macro steps >= 1");
+  scene.faults.partition_grace = faults->positive_quantity_or("partition_grace", dim::time, scene.faults.partition_grace);
+  if (faults->has("redundant_samples")) {
+    const std::string r = faults->choice("redundant_samples", {"auto", "true", "false"});
+    scene.faults.redundant_samples = r == "true"    ? RedundantSamples::always
+                                     : r == "false" ? RedundantSamples::never
+                                                    : RedundantSamples::automatic;
+  }
+}
+
+// `hosts: {name: {address}}`.
+void parse_hosts(Scene& scene) {
+  auto hosts = scene.root.optional_child("hosts");
+  if (!hosts) return;
+  if (!hosts->is_map() || hosts->size() == 0) hosts->fail("expected a map of machines (name: {address: 10.0.0.2 or a host name})");
+  for (const std::string& name : hosts->keys()) {
+    ConfigNode h = hosts->child(name);
+    if (!valid_name(name)) h.fail("expected a host name of letters, digits and '_'");
+    if (!h.is_map()) h.fail("expected {address: an IPv4 address or a host name}");
+    h.allow_only({"address"});
+    HostSpec spec{name, h.string("address"), h.path()};
+    if (!valid_host_address(spec.address))
+      h.child("address").fail("expected an IPv4 address (10.0.0.2) or a host name (letters, digits, '-' and '.'), got '" + spec.address + "'");
+    for (const auto& other : scene.hosts)
+      if (other.address == spec.address) h.child("address").fail("expected each host once: " + other.key_path + " has the same address");
+    scene.hosts.push_back(spec);
+  }
+  // The agents and the nodes they start would need identities of their own: not done yet.
+  if (!scene.security_dir.empty())
+    hosts->fail("expected no hosts with dds.security: DDS security is not available for multi-host runs yet (docs/security.md)");
+}
+
+// A participant's `testing:` seams (scene.h, ParticipantSpec).
+void parse_testing_seams(const ConfigNode& t, ParticipantSpec& spec) {
+  t.allow_only({"lose_writes_after_resume", "lose_write_of_step", "checkpoint_pause_step", "checkpoint_pause", "lose_failed_status"});
+  spec.lose_failed_status = t.has("lose_failed_status") && t.boolean("lose_failed_status");
+  if (t.has("lose_write_of_step")) spec.lose_write_of_step = static_cast<std::uint64_t>(t.integer("lose_write_of_step"));
+  spec.lose_writes_after_resume = t.has("lose_writes_after_resume") && t.boolean("lose_writes_after_resume");
+  if (t.has("checkpoint_pause_step")) spec.checkpoint_pause_step = static_cast<std::uint64_t>(t.integer("checkpoint_pause_step"));
+  spec.checkpoint_pause = t.non_negative_quantity_or("checkpoint_pause", dim::time, 0.0);
+}
+
+// A participant's `host:` and `process:`: where it runs.
+void parse_placement(const Scene& scene, const ConfigNode& p, ParticipantSpec& spec) {
+  if (p.has("host")) {
+    spec.host = p.string("host");
+    if (!scene.find_host(spec.host)) {
+      std::string names;
+      for (const auto& h : scene.hosts) names += (names.empty() ? "" : ", ") + h.name;
+      p.child("host").fail("expected a host of the scene's hosts: section (" + (names.empty() ? std::string("there is none") : names) +
+                           "), got '" + spec.host + "'");
+    }
+    // The agents of the other hosts listen on one domain (mechsim agent --domain D).
+    if (!scene.domain_id)
+      p.child("host").fail("a participant placed on a host needs the agents' DDS domain: set dds.domain to the "
+                           "--domain of the hosts' `mechsim agent` (docs/hosts.md)");
+  }
+  if (p.has("process")) {
+    spec.process = p.string("process");
+    if (!valid_name(spec.process)) p.child("process").fail("expected a process group name of letters, digits and '_', got '" + spec.process + "'");
+  }
+}
+
+// A participant's `restart:` (default: faults.restart).
+void parse_restart(const Scene& scene, const ConfigNode& p, ParticipantSpec& spec) {
+  spec.restart = (p.has("restart") ? p.choice("restart", {"never", "on_failure"}) : scene.faults.restart) == "on_failure";
+  const auto restart_key = [&] { return p.has("restart") ? p.child("restart") : scene.root.child("faults").child("restart"); };
+  // Real-time pacing counts from the start command's wall time: a rolled-back run would
+  // be late by the whole repeated stretch.
+  if (spec.restart && scene.mode == RunMode::realtime)
+    restart_key().fail("restart: on_failure is built for mode: lockstep only, not for a real-time run (docs/faults.md)");
+  // A checkpoint holds a node's state at a step, not the agreed instants before it.
+  if (spec.restart && scene.time.adaptive)
+    restart_key().fail("restart: on_failure is built for a fixed macro step, not for time.step: adaptive (docs/accuracy.md)");
+}
+
+// A participant's `fmu:`: its file written back absolute, so that the run folder's copy of
+// the scene (what the nodes read) names the same file; then its role, an FMU with ports of
+// its own (`type: fmu`) or one in place of the node type's native block. Returns the
+// participant's node as it reads after the rewrite.
+ConfigNode parse_fmu(Scene& scene, const std::string& name, ConfigNode p, const std::vector<std::string>& overrides,
+                     ParticipantSpec& spec) {
+  if (p.has("fmu")) {
+    const bool in_map = p.child("fmu").is_map();
+    const std::string key = in_map ? "fmu.file" : "fmu";
+    const ConfigNode written = scene.root.child("participants").child(name);
+    const std::string file = in_map ? written.child("fmu").string("file") : written.string("fmu");
+    const std::string dotted = "participants." + name + "." + key;
+    scene.root.set_override(dotted, absolute_scene_path(scene, file, dotted, overrides));
+    p = scene.root.child("participants").child(name);
+  }
+  if (spec.type == "fmu") {
+    // `fmu: FILE` and its settings beside it, or the map `fmu: {file, interface, step,
+    // parameters}` of an FMU in place.
+    if (!p.has("fmu")) p.fail("expected `fmu: FILE` for a participant of type fmu");
+    if (p.child("fmu").is_map()) {
+      for (const char* key : {"interface", "step", "parameters"})
+        if (p.has(key)) p.child(key).fail("expected it inside the fmu: map (or `fmu: FILE` with it beside)");
+      spec.fmu = p.child("fmu");
+    } else {
+      spec.fmu_participant = p;
+    }
+    if (p.has("params")) p.child("params").fail("expected no params: for an FMU participant (its parameters: are the FMU's)");
+  } else {
+    for (const char* key : {"interface", "step", "parameters"})
+      if (p.has(key)) p.child(key).fail("expected it only beside `fmu: FILE` in a participant of type fmu");
+    if (p.has("fmu")) spec.fmu = p.child("fmu");
+  }
+  return p;
+}
+
+// One entry of `participants:`.
+ParticipantSpec parse_participant(Scene& scene, const std::string& name, ConfigNode p, const std::vector<std::string>& overrides,
+                                  const ProcessRealtimeSpec& scene_process_realtime) {
+  if (!valid_name(name)) p.fail("expected an instance name of letters, digits and '_'");
+  p.allow_only({"type", "params", "dds", "host", "process", "solver", "realtime", "restart", "fmu", "testing", "interface", "step",
+                "parameters"});
+  ParticipantSpec spec;
+  spec.name = name;
+  if (auto t = p.optional_child("testing")) parse_testing_seams(*t, spec);
+  spec.type = p.string("type");
+  spec.vendor = p.has("dds") ? p.choice("dds", {"cyclone", "fastdds"}) : scene.vendor;
+  parse_placement(scene, p, spec);
+  parse_restart(scene, p, spec);
+  spec.process_realtime = scene_process_realtime;
+  if (auto rt = p.optional_child("realtime")) {
+    rt->allow_only({"priority", "lock_memory", "cpus"});
+    spec.process_realtime = parse_process_realtime(*rt, scene_process_realtime);
+  }
+  if (auto s = p.optional_child("solver")) spec.solver = parse_solver(*s);
+  if (scene.time.adaptive) adaptive_solver_tolerances(spec.solver, scene.time.adaptive->tolerance);
+  spec.params = p.has("params") ? p.child("params") : ConfigNode::from_string("{}", scene.root.file());
+  p = parse_fmu(scene, name, p, overrides, spec);
+  spec.key_path = p.path();
+  return spec;
+}
+
+// `participants:`, then what holds across them (process groups, restart on one host).
+void parse_participants(Scene& scene, const std::vector<std::string>& overrides, const ProcessRealtimeSpec& scene_process_realtime) {
+  const ConfigNode participants = scene.root.child("participants");
   if (!participants.is_map() || participants.size() == 0)
     participants.fail("expected a map of participant instances (name: {type: ..., params: ...})");
-  for (const std::string& name : participants.keys()) {
-    ConfigNode p = participants.child(name);
-    if (!valid_name(name)) p.fail("expected an instance name of letters, digits and '_'");
-    p.allow_only({"type", "params", "dds", "host", "process", "solver", "realtime", "restart", "fmu", "testing", "interface", "step",
-                  "parameters"});
-    ParticipantSpec spec;
-    spec.name = name;
-    if (auto t = p.optional_child("testing")) {
-      t->allow_only({"lose_writes_after_resume", "lose_write_of_step", "checkpoint_pause_step", "checkpoint_pause", "lose_failed_status"});
-      spec.lose_failed_status = t->has("lose_failed_status") && t->boolean("lose_failed_status");
-      if (t->has("lose_write_of_step")) spec.lose_write_of_step = static_cast<std::uint64_t>(t->integer("lose_write_of_step"));
-      spec.lose_writes_after_resume = t->has("lose_writes_after_resume") && t->boolean("lose_writes_after_resume");
-      if (t->has("checkpoint_pause_step")) spec.checkpoint_pause_step = static_cast<std::uint64_t>(t->integer("checkpoint_pause_step"));
-      spec.checkpoint_pause = t->non_negative_quantity_or("checkpoint_pause", dim::time, 0.0);
-    }
-    spec.type = p.string("type");
-    spec.vendor = p.has("dds") ? p.choice("dds", {"cyclone", "fastdds"}) : scene.vendor;
-    if (p.has("host")) {
-      spec.host = p.string("host");
-      if (!scene.find_host(spec.host)) {
-        std::string names;
-        for (const auto& h : scene.hosts) names += (names.empty() ? "" : ", ") + h.name;
-        p.child("host").fail("expected a host of the scene's hosts: section (" + (names.empty() ? std::string("there is none") : names) +
-                             "), got '" + spec.host + "'");
-      }
-      // The agents of the other hosts listen on one domain (mechsim agent --domain D).
-      if (!scene.domain_id)
-        p.child("host").fail("a participant placed on a host needs the agents' DDS domain: set dds.domain to the "
-                             "--domain of the hosts' `mechsim agent` (docs/hosts.md)");
-    }
-    if (p.has("process")) {
-      spec.process = p.string("process");
-      if (!valid_name(spec.process)) p.child("process").fail("expected a process group name of letters, digits and '_', got '" + spec.process + "'");
-    }
-    spec.restart = (p.has("restart") ? p.choice("restart", {"never", "on_failure"}) : scene.faults.restart) == "on_failure";
-    // Real-time pacing counts from the start command's wall time: a rolled-back run would
-    // be late by the whole repeated stretch.
-    if (spec.restart && scene.mode == RunMode::realtime)
-      (p.has("restart") ? p.child("restart") : root.child("faults").child("restart"))
-          .fail("restart: on_failure is built for mode: lockstep only, not for a real-time run (docs/faults.md)");
-    // A checkpoint holds a node's state at a step, not the agreed instants before it.
-    if (spec.restart && scene.time.adaptive)
-      (p.has("restart") ? p.child("restart") : root.child("faults").child("restart"))
-          .fail("restart: on_failure is built for a fixed macro step, not for time.step: adaptive (docs/accuracy.md)");
-    spec.process_realtime = scene_process_realtime;
-    if (auto rt = p.optional_child("realtime")) {
-      rt->allow_only({"priority", "lock_memory", "cpus"});
-      spec.process_realtime = parse_process_realtime(*rt, scene_process_realtime);
-    }
-    if (auto s = p.optional_child("solver")) spec.solver = parse_solver(*s);
-    if (scene.time.adaptive) adaptive_solver_tolerances(spec.solver, scene.time.adaptive->tolerance);
-    spec.params = p.has("params") ? p.child("params") : ConfigNode::from_string("{}", root.file());
-    // An FMU file is relative to the scene file when written in it, to the working folder
-    // when given with --set; written back absolute, so that the run folder's copy of the
-    // scene (what the nodes read) names the same file.
-    const auto absolute_fmu_file = [&](const std::string& key) {
-      const std::string dotted = "participants." + name + "." + key;
-      const std::filesystem::path f(root.child("participants").child(name).child("fmu").is_map()
-                                        ? root.child("participants").child(name).child("fmu").string("file")
-                                        : root.child("participants").child(name).string("fmu"));
-      const bool from_file = std::none_of(overrides.begin(), overrides.end(),
-                                          [&](const std::string& o) { return o.rfind(dotted + "=", 0) == 0; });
-      scene.root.set_override(dotted, std::filesystem::absolute(f.is_absolute() || !from_file ? f : std::filesystem::path(path).parent_path() / f)
-                                    .lexically_normal()
-                                    .string());
-      p = root.child("participants").child(name);
-    };
-    if (p.has("fmu")) absolute_fmu_file(p.child("fmu").is_map() ? "fmu.file" : "fmu");
-    if (spec.type == "fmu") {
-      // A participant that is an FMU with ports of its own: `fmu: FILE` and its settings
-      // beside it, or the map `fmu: {file, interface, step, parameters}` of an FMU in place.
-      if (!p.has("fmu")) p.fail("expected `fmu: FILE` for a participant of type fmu");
-      if (p.child("fmu").is_map()) {
-        for (const char* key : {"interface", "step", "parameters"})
-          if (p.has(key)) p.child(key).fail("expected it inside the fmu: map (or `fmu: FILE` with it beside)");
-        spec.fmu = p.child("fmu");
-      } else {
-        spec.fmu_participant = p;
-      }
-      if (p.has("params")) p.child("params").fail("expected no params: for an FMU participant (its parameters: are the FMU's)");
-    } else {
-      for (const char* key : {"interface", "step", "parameters"})
-        if (p.has(key)) p.child(key).fail("expected it only beside `fmu: FILE` in a participant of type fmu");
-      if (p.has("fmu")) spec.fmu = p.child("fmu");
-    }
-    spec.key_path = p.path();
-    scene.participants.push_back(std::move(spec));
-  }
+  for (const std::string& name : participants.keys())
+    scene.participants.push_back(parse_participant(scene, name, participants.child(name), overrides, scene_process_realtime));
 
   check_process_groups(scene, participants);
 
@@ -479,121 +533,158 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
         participants.child(p.name).child("host").fail(
             "a scene with restart: on_failure runs on the launcher's host only (participant on host '" + p.host +
             "'); restart with rollback across hosts is not built (docs/faults.md)");
+}
 
-  if (auto conns = root.optional_child("connections")) {
-    if (!conns->is_sequence()) conns->fail("expected a list of connections");
-    for (std::size_t i = 0; i < conns->size(); ++i) {
-      ConfigNode c = conns->at(i);
-      c.allow_only({"from", "to", "order", "reconstruction", "coupling", "initial", "fields"});
-      ConnectionSpec spec;
-      spec.from = c.string("from");
-      spec.to = c.string("to");
-      // `participant.port` on both sides, or on neither.
-      const auto split = [](std::string& participant, std::string& port) {
-        const auto dot = participant.find('.');
-        if (dot == std::string::npos) return;
-        port = participant.substr(dot + 1);
-        participant.resize(dot);
-      };
-      split(spec.from, spec.from_field);
-      split(spec.to, spec.to_input);
-      if (spec.from_field.empty() != spec.to_input.empty())
-        c.child(spec.from_field.empty() ? "from" : "to")
-            .fail("expected participant.port on both sides of a port-level connection (from: slide.spindle_angle, "
-                  "to: ctrl.phi), or participant names on both");
-      spec.key_path = c.path();
-      spec.coupling = c.optional_child("coupling");
-      spec.initial = c.optional_child("initial");
-      if (auto fields = c.optional_child("fields")) {
-        if (!fields->is_sequence() || fields->size() == 0) fields->fail("expected a list of topic field names, e.g. [angle, speed]");
-        for (std::size_t f = 0; f < fields->size(); ++f) spec.fields.push_back(fields->at(f).as_string());
-      }
-      if (!scene.find_participant(spec.from)) c.child("from").fail("expected the name of a participant of this scene, got '" + spec.from + "'");
-      if (!scene.find_participant(spec.to)) c.child("to").fail("expected the name of a participant of this scene, got '" + spec.to + "'");
-      if (spec.from == spec.to) c.child("to").fail("expected another participant than 'from'");
-      if (c.has("order"))
-        spec.order = c.choice("order", {"jacobi", "gauss_seidel"}) == "jacobi" ? EdgeOrder::jacobi : EdgeOrder::gauss_seidel;
-      if (c.has("reconstruction")) {
-        const auto& names = reconstruction_names();
-        const std::string r = c.choice("reconstruction", names);
-        spec.reconstruction = static_cast<Reconstruction>(std::find(names.begin(), names.end(), r) - names.begin());
-      }
-      for (const auto& other : scene.connections)
-        if (other.from == spec.from && other.to == spec.to && other.from_field == spec.from_field && other.to_input == spec.to_input)
-          c.fail("expected each from -> to pair once (duplicate of " + other.key_path + ")");
-      scene.connections.push_back(spec);
-    }
+// One entry of `connections:` (after the participants, whose names it checks).
+ConnectionSpec parse_connection(const Scene& scene, const ConfigNode& c) {
+  c.allow_only({"from", "to", "order", "reconstruction", "coupling", "initial", "fields"});
+  ConnectionSpec spec;
+  spec.from = c.string("from");
+  spec.to = c.string("to");
+  // `participant.port` on both sides, or on neither.
+  const auto split = [](std::string& participant, std::string& port) {
+    const auto dot = participant.find('.');
+    if (dot == std::string::npos) return;
+    port = participant.substr(dot + 1);
+    participant.resize(dot);
+  };
+  split(spec.from, spec.from_field);
+  split(spec.to, spec.to_input);
+  if (spec.from_field.empty() != spec.to_input.empty())
+    c.child(spec.from_field.empty() ? "from" : "to")
+        .fail("expected participant.port on both sides of a port-level connection (from: slide.spindle_angle, "
+              "to: ctrl.phi), or participant names on both");
+  spec.key_path = c.path();
+  spec.coupling = c.optional_child("coupling");
+  spec.initial = c.optional_child("initial");
+  if (auto fields = c.optional_child("fields")) {
+    if (!fields->is_sequence() || fields->size() == 0) fields->fail("expected a list of topic field names, e.g. [angle, speed]");
+    for (std::size_t f = 0; f < fields->size(); ++f) spec.fields.push_back(fields->at(f).as_string());
   }
+  if (!scene.find_participant(spec.from)) c.child("from").fail("expected the name of a participant of this scene, got '" + spec.from + "'");
+  if (!scene.find_participant(spec.to)) c.child("to").fail("expected the name of a participant of this scene, got '" + spec.to + "'");
+  if (spec.from == spec.to) c.child("to").fail("expected another participant than 'from'");
+  if (c.has("order"))
+    spec.order = c.choice("order", {"jacobi", "gauss_seidel"}) == "jacobi" ? EdgeOrder::jacobi : EdgeOrder::gauss_seidel;
+  if (c.has("reconstruction")) {
+    const auto& names = reconstruction_names();
+    const std::string r = c.choice("reconstruction", names);
+    spec.reconstruction = static_cast<Reconstruction>(std::find(names.begin(), names.end(), r) - names.begin());
+  }
+  for (const auto& other : scene.connections)
+    if (other.from == spec.from && other.to == spec.to && other.from_field == spec.from_field && other.to_input == spec.to_input)
+      c.fail("expected each from -> to pair once (duplicate of " + other.key_path + ")");
+  return spec;
+}
 
-  if (auto cmp = root.optional_child("compare")) {
-    if (!cmp->is_sequence()) cmp->fail("expected a list of signals 'participant.output'");
-    for (std::size_t i = 0; i < cmp->size(); ++i) {
-      ConfigNode s = cmp->at(i);
-      SignalRef ref = parse_signal_ref(s, s.as_string());
-      if (!scene.find_participant(ref.participant)) s.fail("expected a participant of this scene in '" + ref.full_name() + "'");
-      scene.compare.push_back(ref);
-    }
-  }
+// The entries of the optional list section `key` of the scene, each handed to `entry` in order.
+template <class Entry>
+void for_each_entry(const Scene& scene, const char* key, const std::string& not_a_list, Entry entry) {
+  auto list = scene.root.optional_child(key);
+  if (!list) return;
+  if (!list->is_sequence()) list->fail(not_a_list);
+  for (std::size_t i = 0; i < list->size(); ++i) entry(list->at(i));
+}
 
-  if (auto rep = root.optional_child("report")) {
-    if (!rep->is_sequence()) rep->fail("expected a list of figures such as {min: signal, at: signal, unit: deg}");
-    const std::vector<std::string> stats{"min", "max", "max_abs", "final", "time_true", "step_response", "energy_balance"};
-    for (std::size_t i = 0; i < rep->size(); ++i) {
-      ConfigNode r = rep->at(i);
-      r.allow_only({"min", "max", "max_abs", "final", "time_true", "step_response", "energy_balance", "at", "unit",
-                    "target", "band"});
-      ReportSpec spec;
-      int found = 0;
-      for (const auto& s : stats)
-        if (r.has(s)) {
-          spec.stat = s;
-          ++found;
-        }
-      if (found != 1) r.fail("expected exactly one of min, max, max_abs, final, time_true, step_response, energy_balance");
-      if (spec.stat == "energy_balance") {
-        // {supplied: [power signals], dissipated: [power signals], stored: [energy signals]}
-        ConfigNode b = r.child("energy_balance");
-        if (!b.is_map()) b.fail("expected a map {supplied: [signals in W], dissipated: [signals in W], stored: [signals in J]}");
-        b.allow_only({"supplied", "dissipated", "stored"});
-        for (auto [key, list] : {std::pair{"supplied", &spec.supplied}, std::pair{"dissipated", &spec.dissipated},
-                                 std::pair{"stored", &spec.stored}}) {
-          auto l = b.optional_child(key);
-          if (!l) continue;
-          if (!l->is_sequence()) l->fail("expected a list of participant.output signals");
-          for (std::size_t k = 0; k < l->size(); ++k) {
-            ConfigNode s = l->at(k);
-            SignalRef ref = parse_signal_ref(s, s.as_string());
-            if (!scene.find_participant(ref.participant)) s.fail("expected a participant of this scene in '" + ref.full_name() + "'");
-            list->push_back(ref);
-          }
-        }
-        if (spec.supplied.empty()) b.fail("expected at least one supplied power signal (supplied: [participant.output])");
-        spec.signal = spec.supplied.front();
-        scene.report.push_back(spec);
-        continue;
-      }
-      spec.signal = parse_signal_ref(r.child(spec.stat), r.string(spec.stat));
-      if (r.has("at")) spec.at = parse_signal_ref(r.child("at"), r.string("at"));
-      if (r.has("unit")) {
-        spec.at_unit = r.string("unit");
-        try {
-          spec.at_scale = parse_quantity("1 " + spec.at_unit).value_si;
-        } catch (const std::exception& e) {
-          r.child("unit").fail(std::string("expected a display unit: ") + e.what());
-        }
-        spec.at_wrap_turn = spec.at_unit == "deg";
-      }
-      if (spec.stat == "step_response") {
-        if (r.has("target")) spec.target = r.child("target").as_string();
-        spec.band = r.has("band") ? r.number("band") : 0.02;
-        if (!(spec.band > 0 && spec.band < 0.5)) r.child("band").fail("expected a settling band in (0, 50 %)");
-      }
-      for (const SignalRef* ref : {&spec.signal, spec.at ? &*spec.at : nullptr})
-        if (ref && !scene.find_participant(ref->participant))
-          r.fail("expected a participant of this scene in '" + ref->full_name() + "'");
-      scene.report.push_back(spec);
-    }
+void parse_connections(Scene& scene) {
+  for_each_entry(scene, "connections", "expected a list of connections",
+                 [&](const ConfigNode& c) { scene.connections.push_back(parse_connection(scene, c)); });
+}
+
+// A scalar 'participant.output' naming a participant of the scene.
+SignalRef parse_scene_signal(const Scene& scene, const ConfigNode& s) {
+  SignalRef ref = parse_signal_ref(s, s.as_string());
+  if (!scene.find_participant(ref.participant)) s.fail("expected a participant of this scene in '" + ref.full_name() + "'");
+  return ref;
+}
+
+// `compare: [participant.output, ...]`.
+void parse_compare(Scene& scene) {
+  for_each_entry(scene, "compare", "expected a list of signals 'participant.output'",
+                 [&](const ConfigNode& s) { scene.compare.push_back(parse_scene_signal(scene, s)); });
+}
+
+// A report figure `energy_balance: {supplied: [power signals], dissipated: [power signals],
+// stored: [energy signals]}`.
+void parse_energy_balance(const Scene& scene, const ConfigNode& r, ReportSpec& spec) {
+  ConfigNode b = r.child("energy_balance");
+  if (!b.is_map()) b.fail("expected a map {supplied: [signals in W], dissipated: [signals in W], stored: [signals in J]}");
+  b.allow_only({"supplied", "dissipated", "stored"});
+  for (auto [key, list] : {std::pair{"supplied", &spec.supplied}, std::pair{"dissipated", &spec.dissipated},
+                           std::pair{"stored", &spec.stored}}) {
+    auto l = b.optional_child(key);
+    if (!l) continue;
+    if (!l->is_sequence()) l->fail("expected a list of participant.output signals");
+    for (std::size_t k = 0; k < l->size(); ++k) list->push_back(parse_scene_signal(scene, l->at(k)));
   }
+  if (spec.supplied.empty()) b.fail("expected at least one supplied power signal (supplied: [participant.output])");
+  spec.signal = spec.supplied.front();
+}
+
+// One entry of `report:`: exactly one statistic of a signal, with its options.
+ReportSpec parse_report_figure(const Scene& scene, const ConfigNode& r) {
+  static const std::vector<std::string> stats{"min", "max", "max_abs", "final", "time_true", "step_response", "energy_balance"};
+  r.allow_only({"min", "max", "max_abs", "final", "time_true", "step_response", "energy_balance", "at", "unit", "target", "band"});
+  ReportSpec spec;
+  int found = 0;
+  for (const auto& s : stats)
+    if (r.has(s)) {
+      spec.stat = s;
+      ++found;
+    }
+  if (found != 1) r.fail("expected exactly one of min, max, max_abs, final, time_true, step_response, energy_balance");
+  if (spec.stat == "energy_balance") {
+    parse_energy_balance(scene, r, spec);
+    return spec;
+  }
+  spec.signal = parse_signal_ref(r.child(spec.stat), r.string(spec.stat));
+  if (r.has("at")) spec.at = parse_signal_ref(r.child("at"), r.string("at"));
+  if (r.has("unit")) {
+    spec.at_unit = r.string("unit");
+    try {
+      spec.at_scale = parse_quantity("1 " + spec.at_unit).value_si;
+    } catch (const std::exception& e) {
+      r.child("unit").fail(std::string("expected a display unit: ") + e.what());
+    }
+    spec.at_wrap_turn = spec.at_unit == "deg";
+  }
+  if (spec.stat == "step_response") {
+    if (r.has("target")) spec.target = r.child("target").as_string();
+    spec.band = r.has("band") ? r.number("band") : 0.02;
+    if (!(spec.band > 0 && spec.band < 0.5)) r.child("band").fail("expected a settling band in (0, 50 %)");
+  }
+  for (const SignalRef* ref : {&spec.signal, spec.at ? &*spec.at : nullptr})
+    if (ref && !scene.find_participant(ref->participant))
+      r.fail("expected a participant of this scene in '" + ref->full_name() + "'");
+  return spec;
+}
+
+void parse_report(Scene& scene) {
+  for_each_entry(scene, "report", "expected a list of figures such as {min: signal, at: signal, unit: deg}",
+                 [&](const ConfigNode& r) { scene.report.push_back(parse_report_figure(scene, r)); });
+}
+
+}  // namespace
+
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
+  Scene scene;
+  load_document(scene, path, overrides);
+  const ConfigNode& root = scene.root;
+  parse_identity(scene);
+  scene.time = parse_time(root.child("time"));
+  parse_run_mode(scene);
+  const ProcessRealtimeSpec scene_process_realtime = parse_realtime_section(scene);
+  if (root.has("hang_timeout")) scene.hang_timeout = root.positive_quantity("hang_timeout", dim::time);
+  if (root.has("processes")) scene.processes = parse_process_layout(root.child("processes"));
+  parse_dds_section(scene, overrides);
+  parse_faults_section(scene);
+  scene.design = root.optional_child("design");
+  if (auto rec = root.optional_child("record")) scene.record = parse_record(*rec);
+  parse_hosts(scene);
+  parse_participants(scene, overrides, scene_process_realtime);
+  parse_connections(scene);
+  parse_compare(scene);
+  parse_report(scene);
   return scene;
 }
 

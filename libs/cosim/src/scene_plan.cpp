@@ -5,7 +5,8 @@
 #include "mechsim/fmi/co_simulation_block.h"
 
 #include "mechsim/config/units.h"
-#include "mechsim/cosim/nc_params.h"
+#include "coupling/cut_plan.h"
+#include "mechsim/cosim/coupling/coupling_spec.h"
 
 #include <algorithm>
 #include <cmath>
@@ -50,50 +51,6 @@ std::vector<int> find_cycle(const std::vector<std::vector<int>>& adjacent) {
   for (int v = 0; v < n; ++v)
     if (color[v] == 0 && visit(v)) return cycle;
   return {};
-}
-
-// Both sides of a connection whose coupling element is joined by the interface-Jacobian
-// scheme: the node types must offer a cut port each, one loaded and one driven by the torque.
-void plan_interface_jacobian_cut(const config::Scene& scene, const config::ConnectionSpec& c, PlannedNode& from,
-                                 PlannedNode& to) {
-  const std::string where = c.key_path + ".coupling";
-  const CouplingSpec spec = parse_coupling(*c.coupling);
-  for (const PlannedNode* n : {&from, &to})
-    if (!n->type->cut_port)
-      refuse(scene, where, "expected both participants of an interface_jacobian coupling to offer a cut port; a " +
-                               n->type->name + " has none");
-  if (from.type->cut_port->twist_sign == to.type->cut_port->twist_sign)
-    refuse(scene, where, "expected one participant the coupling torque loads (a tachometer) and one it drives (a slide)");
-  if (c.order != config::EdgeOrder::jacobi)
-    refuse(scene, c.key_path + ".order", "expected order: jacobi (the interface_jacobian coupling exchanges one prediction per side and step)");
-  for (const auto& other : scene.connections)
-    if (other.from == c.to && other.to == c.from)
-      refuse(scene, other.key_path, "expected no connection " + c.to + " -> " + c.from + ": the interface_jacobian coupling of " +
-                                        c.key_path + " joins them both ways");
-  for (PlannedNode* n : {&from, &to}) {
-    const CutPort& port = *n->type->cut_port;
-    PlannedNode& partner = n == &from ? to : from;
-    if (n->cut) refuse(scene, where, "expected at most one interface_jacobian cut per participant ('" + n->name() + "' has two)");
-    PlannedCut cut;
-    cut.partner = partner.name();
-    cut.topic = n->name() + "/coupling";
-    cut.partner_topic = partner.name() + "/coupling";
-    cut.type = transport::find_topic_type("CouplingPrediction");
-    cut.torque_input = n->block->input_index(port.torque_input);
-    cut.angle_output = n->block->output_index(port.angle_output);
-    cut.speed_output = n->block->output_index(port.speed_output);
-    if (cut.torque_input < 0 || cut.angle_output < 0 || cut.speed_output < 0 || !cut.type)
-      throw std::logic_error("cut port of node type " + n->type->name + " does not match its block in torque mode");
-    for (int o : {cut.angle_output, cut.speed_output})
-      if (!n->block->outputs()[o].feedthrough.empty())
-        throw std::logic_error("cut port of node type " + n->type->name + ": angle and speed must not depend on inputs directly");
-    cut.twist_sign = port.twist_sign;
-    cut.levels = spec.levels;
-    cut.stiffness = spec.params.stiffness;
-    cut.damping = spec.params.damping;
-    cut.key_path = where;
-    n->cut = std::move(cut);
-  }
 }
 
 // A port-level connection `from: P.field, to: Q.input`: P's topic field feeds Q's block
@@ -274,133 +231,180 @@ ScenePlan ScenePlan::build(const config::Scene& scene) {
   }
 }
 
+namespace {
+
+// The element at the cut of any connection to or from a participant (at most one).
+const config::ConfigNode* coupling_element_of(const config::Scene& scene, const config::ParticipantSpec& spec) {
+  const config::ConfigNode* coupling = nullptr;
+  for (const auto& c : scene.connections)
+    if ((c.from == spec.name || c.to == spec.name) && c.coupling) {
+      if (coupling) refuse(scene, c.key_path + ".coupling", "expected at most one coupling element per participant");
+      coupling = &*c.coupling;
+    }
+  return coupling;
+}
+
+// The participant's block: its node type's, an FMU participant's, or an FMU in place of the
+// native block (which stays the template of its ports).
+void build_block(const config::Scene& scene, const config::ParticipantSpec& spec, PlannedNode& node) {
+  const config::ConfigNode* coupling = coupling_element_of(scene, spec);
+  // A model's own check of its parameters (libs/models validate(), or parameters outside
+  // what the model describes) is the scene's error, named by the participant's params
+  // (found by tests/fuzz/scene_fuzz: overlapping follower loads ended the process instead).
+  const auto refuse_params = [&](const std::exception& e) {
+    refuse(scene, spec.key_path + ".params", std::string("parameters a ") + spec.type + " accepts (" + e.what() + ")");
+  };
+  try {
+    if (spec.type == kFmuNodeType) {
+      BuiltFmuParticipant built = make_fmu_participant(scene, spec, coupling);
+      node.fmu = std::move(built.participant);
+      node.type = &node.fmu->node_type;
+      node.block = std::move(built.block);
+    } else {
+      node.block = node.type->make_block(spec.params, coupling);
+    }
+    if (spec.fmu && !node.fmu) node.block = make_fmu_block(scene, spec, *node.type, *node.block, coupling);
+  } catch (const std::invalid_argument& e) {
+    refuse_params(e);
+  } catch (const std::domain_error& e) {
+    refuse_params(e);
+  }
+}
+
+// A participant as the plan runs it: its node type, block, topic and published outputs.
+PlannedNode plan_node(const config::Scene& scene, const config::ParticipantSpec& spec) {
+  PlannedNode node;
+  node.spec = &spec;
+  node.type = find_node_type(spec.type);
+  if (!node.type && spec.type != kFmuNodeType) {
+    std::string known;
+    for (const auto& t : node_types()) known += (known.empty() ? "" : ", ") + t.name;
+    refuse(scene, spec.key_path + ".type", "expected a node type (" + known + ", fmu), got '" + spec.type + "'");
+  }
+  build_block(scene, spec, node);
+  node.steps_itself = dynamic_cast<const fmi::CoSimulationBlock*>(node.block.get()) != nullptr;
+  node.topic = spec.name + "/" + node.type->topic_suffix;
+  for (const auto& field : node.type->publishes->fields) {
+    // -1: a field this configuration does not compute (published as NaN).
+    node.published_outputs.push_back(node.block->output_index(field.name));
+  }
+  return node;
+}
+
+// The node types' mapping of a topic connection's fields onto `to`'s inputs (those of
+// `fields:` only, when the connection names them) into `edge`.
+void map_group_fields(const config::Scene& scene, const config::ConnectionSpec& c, const InputGroup& group, const PlannedNode& to,
+                      InboundEdge& edge) {
+  for (const std::string& wanted : c.fields) {
+    bool mapped = false;
+    std::string known;
+    for (const auto& [field, input] : group.field_to_input) {
+      mapped = mapped || field == wanted;
+      known += (known.empty() ? "" : ", ") + field;
+    }
+    if (!mapped)
+      refuse(scene, c.key_path + ".fields", "expected fields of " + edge.type->idl_name + " that a " + to.type->name +
+                                                " reads (" + known + "), got '" + wanted + "'");
+  }
+  for (const auto& [field, input] : group.field_to_input) {
+    if (!c.fields.empty() && std::find(c.fields.begin(), c.fields.end(), field) == c.fields.end()) continue;
+    int f = edge.type->field_index(field), i = to.block->input_index(input);
+    if (f < 0) throw std::logic_error("catalog maps unknown field " + field);
+    if (i < 0) continue;  // an input this configuration of the block does not use
+    for (const auto& other : to.inputs)
+      for (const auto& [of, oi] : other.field_to_input)
+        if (oi == i) refuse(scene, c.key_path, "expected each input of '" + c.to + "' fed once: input '" + input + "' is already fed by '" + other.from + "'");
+    edge.field_to_input.emplace_back(f, i);
+  }
+}
+
+// `initial: {field: value}` — the partner's fields before its first sample (Jacobi only).
+void parse_initial_values(const config::ConfigNode& ini, const config::ConnectionSpec& c, InboundEdge& edge) {
+  if (!ini.is_map()) ini.fail("expected a map {topic field: value}, e.g. {drive_load_inertia: 2.5 kg m^2}");
+  if (c.order != config::EdgeOrder::jacobi)
+    ini.fail("expected no initial values on a gauss_seidel edge (it waits for the partner's step-0 sample)");
+  for (const std::string& key : ini.keys()) {
+    const int f = edge.type->field_index(key);
+    bool fed = false;
+    for (const auto& [ef, ei] : edge.field_to_input) fed = fed || ef == f;
+    if (!fed) ini.child(key).fail("expected a field of " + edge.type->idl_name + " that this connection reads");
+    double v = 0.0;
+    try {
+      v = config::parse_quantity(ini.child(key).as_string()).value_si;
+    } catch (const std::exception& e) {
+      ini.child(key).fail(std::string("expected a value (SI, or with its unit): ") + e.what());
+    }
+    edge.initial_values.emplace_back(f, v);
+  }
+}
+
+// A connection of whole topics: the node types' own mapping of `from`'s topic onto `to`.
+void plan_topic_connection(const config::Scene& scene, const config::ConnectionSpec& c, PlannedNode& from, PlannedNode& to) {
+  if (from.fmu || to.fmu)
+    refuse(scene, c.key_path, "expected a port-level connection (from: " + c.from + ".OUTPUT, to: " + c.to +
+                                  ".INPUT) to or from an FMU participant");
+  const InputGroup* group = to.type->group_for(*from.type->publishes);
+  if (!group)
+    refuse(scene, c.key_path, "expected a connection the node types support: a " + to.type->name +
+                                  " cannot read the " + from.type->publishes->idl_name + " of a " + from.type->name);
+  InboundEdge edge;
+  edge.from = c.from;
+  edge.topic = from.topic;
+  edge.type = from.type->publishes;
+  edge.order = c.order;
+  edge.reconstruction = c.reconstruction;
+  map_group_fields(scene, c, *group, to, edge);
+  if (c.initial) parse_initial_values(*c.initial, c, edge);
+  if (edge.field_to_input.empty())
+    refuse(scene, c.key_path, "expected a connection that feeds an input of '" + c.to + "': as configured, it reads nothing from '" + c.from + "'");
+  to.inputs.push_back(std::move(edge));
+  ++from.subscriber_count;
+}
+
+}  // namespace
+
+// The passes of a time run's plan, in order: each relies on the ones before it (and the first
+// error found is the one reported).
 ScenePlan ScenePlan::build_time_run(const config::Scene& scene) {
   ScenePlan plan;
   plan.scene_ = &scene;
-  for (const auto& spec : scene.participants) {
-    PlannedNode node;
-    node.spec = &spec;
-    node.type = find_node_type(spec.type);
-    if (!node.type && spec.type != kFmuNodeType) {
-      std::string known;
-      for (const auto& t : node_types()) known += (known.empty() ? "" : ", ") + t.name;
-      refuse(scene, spec.key_path + ".type", "expected a node type (" + known + ", fmu), got '" + spec.type + "'");
-    }
-    // The element at the cut of any connection to or from this participant.
-    const config::ConfigNode* coupling = nullptr;
-    for (const auto& c : scene.connections)
-      if ((c.from == spec.name || c.to == spec.name) && c.coupling) {
-        if (coupling) refuse(scene, c.key_path + ".coupling", "expected at most one coupling element per participant");
-        coupling = &*c.coupling;
-      }
-    // A model's own check of its parameters (libs/models validate(), or parameters outside
-    // what the model describes) is the scene's error, named by the participant's params
-    // (found by tests/fuzz/scene_fuzz: overlapping follower loads ended the process instead).
-    const auto refuse_params = [&](const std::exception& e) {
-      refuse(scene, spec.key_path + ".params", std::string("parameters a ") + spec.type + " accepts (" + e.what() + ")");
-    };
-    try {
-      if (spec.type == kFmuNodeType) {
-        BuiltFmuParticipant built = make_fmu_participant(scene, spec, coupling);
-        node.fmu = std::move(built.participant);
-        node.type = &node.fmu->node_type;
-        node.block = std::move(built.block);
-      } else {
-        node.block = node.type->make_block(spec.params, coupling);
-      }
-      // An FMU in place of the native block, which stays the template of its ports.
-      if (spec.fmu && !node.fmu) node.block = make_fmu_block(scene, spec, *node.type, *node.block, coupling);
-    } catch (const std::invalid_argument& e) {
-      refuse_params(e);
-    } catch (const std::domain_error& e) {
-      refuse_params(e);
-    }
-    node.steps_itself = dynamic_cast<const fmi::CoSimulationBlock*>(node.block.get()) != nullptr;
-    node.topic = spec.name + "/" + node.type->topic_suffix;
-    for (const auto& field : node.type->publishes->fields) {
-      // -1: a field this configuration does not compute (published as NaN).
-      node.published_outputs.push_back(node.block->output_index(field.name));
-    }
-    plan.nodes_.push_back(std::move(node));
-  }
+  plan.place_nodes();
+  plan.resolve_edges();
+  plan.mark_watched_outputs();
+  plan.check_required_inputs();
+  plan.order_gauss_seidel();
+  plan.check_algebraic_loops();
+  plan.resolve_signals();
+  plan.land_on_scheduled_events();  // after the edges: angle events follow the `angle` input to its publisher
+  return plan;
+}
 
+void ScenePlan::place_nodes() {
+  for (const auto& spec : scene_->participants) nodes_.push_back(plan_node(*scene_, spec));
+}
+
+void ScenePlan::resolve_edges() {
+  const config::Scene& scene = *scene_;
   for (const auto& c : scene.connections) {
-    PlannedNode& from = plan.node(c.from);
-    PlannedNode& to = plan.node(c.to);
-    if (c.coupling && parse_coupling(*c.coupling).scheme == "interface_jacobian") {
-      plan_interface_jacobian_cut(scene, c, from, to);
-      continue;
-    }
-    if (!c.from_field.empty()) {
+    PlannedNode& from = node(c.from);
+    PlannedNode& to = node(c.to);
+    if (c.coupling && coupling::parse_coupling(*c.coupling).scheme == coupling::CouplingScheme::interface_jacobian)
+      coupling::plan_interface_jacobian_cut(scene, c, from, to);
+    else if (!c.from_field.empty())
       plan_port_connection(scene, c, from, to);
-      continue;
-    }
-    if (from.fmu || to.fmu)
-      refuse(scene, c.key_path, "expected a port-level connection (from: " + c.from + ".OUTPUT, to: " + c.to +
-                                    ".INPUT) to or from an FMU participant");
-    const InputGroup* group = to.type->group_for(*from.type->publishes);
-    if (!group)
-      refuse(scene, c.key_path, "expected a connection the node types support: a " + to.type->name +
-                                    " cannot read the " + from.type->publishes->idl_name + " of a " + from.type->name);
-    InboundEdge edge;
-    edge.from = c.from;
-    edge.topic = from.topic;
-    edge.type = from.type->publishes;
-    edge.order = c.order;
-    edge.reconstruction = c.reconstruction;
-    for (const std::string& wanted : c.fields) {
-      bool mapped = false;
-      std::string known;
-      for (const auto& [field, input] : group->field_to_input) {
-        mapped = mapped || field == wanted;
-        known += (known.empty() ? "" : ", ") + field;
-      }
-      if (!mapped)
-        refuse(scene, c.key_path + ".fields", "expected fields of " + edge.type->idl_name + " that a " + to.type->name +
-                                                  " reads (" + known + "), got '" + wanted + "'");
-    }
-    for (const auto& [field, input] : group->field_to_input) {
-      if (!c.fields.empty() && std::find(c.fields.begin(), c.fields.end(), field) == c.fields.end()) continue;
-      int f = edge.type->field_index(field), i = to.block->input_index(input);
-      if (f < 0) throw std::logic_error("catalog maps unknown field " + field);
-      if (i < 0) continue;  // an input this configuration of the block does not use
-      for (const auto& other : to.inputs)
-        for (const auto& [of, oi] : other.field_to_input)
-          if (oi == i) refuse(scene, c.key_path, "expected each input of '" + c.to + "' fed once: input '" + input + "' is already fed by '" + other.from + "'");
-      edge.field_to_input.emplace_back(f, i);
-    }
-    if (c.initial) {
-      // `initial: {field: value}` — the partner's fields before its first sample (Jacobi only).
-      const config::ConfigNode& ini = *c.initial;
-      if (!ini.is_map()) ini.fail("expected a map {topic field: value}, e.g. {drive_load_inertia: 2.5 kg m^2}");
-      if (c.order != config::EdgeOrder::jacobi)
-        ini.fail("expected no initial values on a gauss_seidel edge (it waits for the partner's step-0 sample)");
-      for (const std::string& key : ini.keys()) {
-        const int f = edge.type->field_index(key);
-        bool fed = false;
-        for (const auto& [ef, ei] : edge.field_to_input) fed = fed || ef == f;
-        if (!fed) ini.child(key).fail("expected a field of " + edge.type->idl_name + " that this connection reads");
-        double v = 0.0;
-        try {
-          v = config::parse_quantity(ini.child(key).as_string()).value_si;
-        } catch (const std::exception& e) {
-          ini.child(key).fail(std::string("expected a value (SI, or with its unit): ") + e.what());
-        }
-        edge.initial_values.emplace_back(f, v);
-      }
-    }
-    if (edge.field_to_input.empty())
-      refuse(scene, c.key_path, "expected a connection that feeds an input of '" + c.to + "': as configured, it reads nothing from '" + c.from + "'");
-    to.inputs.push_back(std::move(edge));
-    ++from.subscriber_count;
+    else
+      plan_topic_connection(scene, c, from, to);
   }
+}
+
+void ScenePlan::mark_watched_outputs() {
   // The outputs that matter beyond their node: compared, or read by another participant.
-  for (auto& node : plan.nodes_) {
+  for (auto& node : nodes_) {
     std::set<int> watched;
-    for (const auto& signal : scene.compare)
+    for (const auto& signal : scene_->compare)
       if (signal.participant == node.name())
         if (const int o = node.block->output_index(signal.output); o >= 0) watched.insert(o);
-    for (const auto& other : plan.nodes_)
+    for (const auto& other : nodes_)
       for (const auto& edge : other.inputs)
         if (edge.from == node.name())
           for (const auto& [field, input] : edge.field_to_input)
@@ -409,55 +413,62 @@ ScenePlan ScenePlan::build_time_run(const config::Scene& scene) {
   }
   // The launcher's recorder reads too: a node starts only once its writer has matched it,
   // or the recording could miss the first steps (a match is seen by each side on its own).
-  if (scene.record)
-    for (auto& node : plan.nodes_) node.recorded = scene.record->records(node.topic);
+  if (scene_->record)
+    for (auto& node : nodes_) node.recorded = scene_->record->records(node.topic);
+}
 
-  // Required inputs must be connected.
-  for (const auto& node : plan.nodes_) {
+void ScenePlan::check_required_inputs() const {
+  for (const auto& node : nodes_) {
     for (int i = 0; i < node.block->num_inputs(); ++i) {
       if (!node.block->inputs()[i].required) continue;
       bool fed = false;
       for (const auto& e : node.inputs)
         for (const auto& fi : e.field_to_input) fed = fed || fi.second == i;
       if (!fed)
-        refuse(scene, "connections", "expected a connection feeding the required input '" + node.block->inputs()[i].name +
-                                          "' of '" + node.name() + "' (" + node.type->name + ")");
+        refuse(*scene_, "connections", "expected a connection feeding the required input '" + node.block->inputs()[i].name +
+                                           "' of '" + node.name() + "' (" + node.type->name + ")");
     }
   }
+}
 
+int ScenePlan::index_of(const std::string& name) const {
+  for (std::size_t i = 0; i < nodes_.size(); ++i)
+    if (nodes_[i].name() == name) return static_cast<int>(i);
+  return -1;
+}
+
+void ScenePlan::order_gauss_seidel() const {
   // Gauss-Seidel edges must be ordered without cycles.
-  const int n = static_cast<int>(plan.nodes_.size());
-  auto index_of = [&](const std::string& name) {
-    for (int i = 0; i < n; ++i)
-      if (plan.nodes_[i].name() == name) return i;
-    return -1;
-  };
+  const int n = static_cast<int>(nodes_.size());
   std::vector<std::vector<int>> gs(n);
   for (int i = 0; i < n; ++i)
-    for (const auto& e : plan.nodes_[i].inputs)
+    for (const auto& e : nodes_[i].inputs)
       if (e.order == config::EdgeOrder::gauss_seidel) gs[index_of(e.from)].push_back(i);
   if (auto cycle = find_cycle(gs); !cycle.empty()) {
     std::string names;
-    for (int v : cycle) names += plan.nodes_[v].name() + " -> ";
-    refuse(scene, "connections", "expected Gauss-Seidel edges without cycles; found " + names + plan.nodes_[cycle[0]].name() +
-                                     " (declare one of these edges 'order: jacobi')");
+    for (int v : cycle) names += nodes_[v].name() + " -> ";
+    refuse(*scene_, "connections", "expected Gauss-Seidel edges without cycles; found " + names + nodes_[cycle[0]].name() +
+                                       " (declare one of these edges 'order: jacobi')");
   }
+}
 
+void ScenePlan::check_algebraic_loops() const {
   // Algebraic loops through direct feedthrough (port level): the monolithic reference
   // could not evaluate them.
+  const int n = static_cast<int>(nodes_.size());
   std::vector<int> base(n + 1, 0);
-  for (int i = 0; i < n; ++i) base[i + 1] = base[i] + plan.nodes_[i].block->num_outputs();
+  for (int i = 0; i < n; ++i) base[i + 1] = base[i] + nodes_[i].block->num_outputs();
   std::vector<std::vector<int>> ports(base[n]);
   for (int i = 0; i < n; ++i) {
-    const auto& node = plan.nodes_[i];
+    const auto& node = nodes_[i];
     for (const auto& e : node.inputs) {
-      const auto& src = plan.nodes_[index_of(e.from)];
+      const auto& src = nodes_[index_of(e.from)];
       int src_index = index_of(e.from);
       for (const auto& [field, input] : e.field_to_input) {
         int src_out = src.published_outputs[field];
         if (src_out < 0)
-          refuse(scene, "connections", "expected '" + e.from + "' to compute '" + src.type->publishes->fields[field].name +
-                                           "', which '" + node.name() + "' reads; in its configuration it does not");
+          refuse(*scene_, "connections", "expected '" + e.from + "' to compute '" + src.type->publishes->fields[field].name +
+                                             "', which '" + node.name() + "' reads; in its configuration it does not");
         for (int o = 0; o < node.block->num_outputs(); ++o)
           for (int ft : node.block->outputs()[o].feedthrough)
             if (ft == input) ports[base[src_index] + src_out].push_back(base[i] + o);
@@ -469,17 +480,20 @@ ScenePlan ScenePlan::build_time_run(const config::Scene& scene) {
     for (int v : cycle) {
       int i = 0;
       while (base[i + 1] <= v) ++i;
-      names += plan.nodes_[i].name() + "." + plan.nodes_[i].block->outputs()[v - base[i]].name + " -> ";
+      names += nodes_[i].name() + "." + nodes_[i].block->outputs()[v - base[i]].name + " -> ";
     }
-    refuse(scene, "connections", "expected no algebraic loop through direct feedthrough; found " + names + "...");
+    refuse(*scene_, "connections", "expected no algebraic loop through direct feedthrough; found " + names + "...");
   }
+}
 
-  for (const auto& s : scene.compare) plan.resolve(s);
+void ScenePlan::resolve_signals() const {
+  const config::Scene& scene = *scene_;
+  for (const auto& s : scene.compare) resolve(s);
   for (const auto& r : scene.report) {
-    plan.resolve(r.signal);
-    if (r.at) plan.resolve(*r.at);
+    resolve(r.signal);
+    if (r.at) resolve(*r.at);
     for (const auto* list : {&r.supplied, &r.dissipated, &r.stored})
-      for (const auto& s : *list) plan.resolve(s);
+      for (const auto& s : *list) resolve(s);
   }
   // time.scales names topic fields: each must be one a participant publishes.
   if (scene.time.adaptive)
@@ -487,12 +501,10 @@ ScenePlan ScenePlan::build_time_run(const config::Scene& scene) {
       const auto dot = key.find('.');
       const config::ParticipantSpec* p = dot == std::string::npos ? nullptr : scene.find_participant(key.substr(0, dot));
       if (!p) refuse(scene, "time.scales." + key.substr(0, dot), "expected a participant of this scene");
-      const PlannedNode& publisher = plan.node(p->name);
+      const PlannedNode& publisher = node(p->name);
       if (publisher.type->publishes->field_index(key.substr(dot + 1)) < 0)
         refuse(scene, "time.scales." + key, "expected a field of " + publisher.type->publishes->idl_name + " (what '" + p->name + "' publishes)");
     }
-  plan.land_on_scheduled_events();  // after the edges: angle events follow the `angle` input to its publisher
-  return plan;
 }
 
 const PlannedNode& ScenePlan::node(const std::string& name) const {

@@ -298,69 +298,93 @@ bool Supervisor::wait_readers() {
   }
 }
 
+// The passes of a run: start every node, send the start command once all are ready and
+// matched, supervise until the run ends, then conclude (stop what is left on a failure).
 SupervisedRun Supervisor::run() {
   for (const auto& node : nodes_) watch_[node] = {};
   for (NodeHost* host : hosts_) host->start_all();
   if (wait_ready() && wait_readers()) {
-    start_ = opt_.start;
-    // Real-time pacing counts from the start command: step 0 is due a moment after it is
-    // sent, so that every node has it by then.
-    if (start_.mode == transport::RunMode::realtime) start_.start_wall_ns = Pacer::now_ns() + 50'000'000;
-    control_.write(start_);
-    started_ = Clock::now();
-    for (auto& [name, w] : watch_) w.last_seen = started_;
-    auto last_progress = Clock::now();
-    for (;;) {
-      take_status();
-      for (auto& [name, w] : watch_)
-        if (w.last.state == transport::NodeState::done && w.done_at_s < 0) w.done_at_s = since_start();
-      check_exits(true);
-      if (!out_.reason.empty()) break;
-      if (!to_restart_.empty()) {
-        roll_back();
-        if (!out_.reason.empty()) break;
-        if (hooks_.interrupted && hooks_.interrupted()) continue;
-      }
-      // The run steps again once every node is past the checkpoint it went back to.
-      if (!restart_log_.empty() && restart_log_.back().stepping_s < 0 && restart_log_.back().resumed_s >= 0) {
-        bool past = true;
-        for (const auto& [name, w] : watch_)
-          past = past && w.last.state != transport::NodeState::ready && w.last.header.step > restart_log_.back().rollback_step;
-        if (past)
-          for (auto& r : restart_log_)
-            if (r.generation == restart_log_.back().generation) r.stepping_s = since_start();
-      }
-      bool all_exited = true;
-      for (const auto& node : nodes_) all_exited = all_exited && host_of(node).exited(node);
-      if (all_exited) {
-        out_.ok = true;
-        // The final statuses (done, with the solver statistics) may still be in flight.
-        for (int i = 0; i < 20; ++i) {
-          take_status();
-          bool all = true;
-          for (const auto& [name, w] : watch_) all = all && w.last.state == transport::NodeState::done;
-          if (all) break;
-          participant_.wait(std::chrono::milliseconds(5));
-        }
-        for (auto& [name, w] : watch_)
-          if (w.last.state == transport::NodeState::done && w.done_at_s < 0) w.done_at_s = since_start();
-        break;
-      }
-      if (const int sig = hooks_.interrupted ? hooks_.interrupted() : 0) {
-        fail("", "interrupted by signal " + std::to_string(sig));
-        out_.exit_code = 130;
-        break;
-      }
-      watch_silence();
-      if (!out_.reason.empty()) break;
-      if (hooks_.progress && seconds_since(last_progress) > 0.2) {
-        hooks_.progress(watch_, since_start(), false);
-        last_progress = Clock::now();
-      }
-      participant_.wait(std::chrono::milliseconds(20));
-    }
+    send_start();
+    supervise();
     out_.wall_time_s = since_start();
   }
+  conclude();
+  return out_;
+}
+
+void Supervisor::send_start() {
+  start_ = opt_.start;
+  // Real-time pacing counts from the start command: step 0 is due a moment after it is
+  // sent, so that every node has it by then.
+  if (start_.mode == transport::RunMode::realtime) start_.start_wall_ns = Pacer::now_ns() + 50'000'000;
+  control_.write(start_);
+  started_ = Clock::now();
+  for (auto& [name, w] : watch_) w.last_seen = started_;
+}
+
+void Supervisor::note_done_times() {
+  for (auto& [name, w] : watch_)
+    if (w.last.state == transport::NodeState::done && w.done_at_s < 0) w.done_at_s = since_start();
+}
+
+void Supervisor::note_stepping_after_rollback() {
+  // The run steps again once every node is past the checkpoint it went back to.
+  if (restart_log_.empty() || restart_log_.back().stepping_s >= 0 || restart_log_.back().resumed_s < 0) return;
+  bool past = true;
+  for (const auto& [name, w] : watch_)
+    past = past && w.last.state != transport::NodeState::ready && w.last.header.step > restart_log_.back().rollback_step;
+  if (past)
+    for (auto& r : restart_log_)
+      if (r.generation == restart_log_.back().generation) r.stepping_s = since_start();
+}
+
+bool Supervisor::finish_if_all_exited() {
+  bool all_exited = true;
+  for (const auto& node : nodes_) all_exited = all_exited && host_of(node).exited(node);
+  if (!all_exited) return false;
+  out_.ok = true;
+  // The final statuses (done, with the solver statistics) may still be in flight.
+  for (int i = 0; i < 20; ++i) {
+    take_status();
+    bool all = true;
+    for (const auto& [name, w] : watch_) all = all && w.last.state == transport::NodeState::done;
+    if (all) break;
+    participant_.wait(std::chrono::milliseconds(5));
+  }
+  note_done_times();
+  return true;
+}
+
+void Supervisor::supervise() {
+  auto last_progress = Clock::now();
+  for (;;) {
+    take_status();
+    note_done_times();
+    check_exits(true);
+    if (!out_.reason.empty()) break;
+    if (!to_restart_.empty()) {
+      roll_back();
+      if (!out_.reason.empty()) break;
+      if (hooks_.interrupted && hooks_.interrupted()) continue;
+    }
+    note_stepping_after_rollback();
+    if (finish_if_all_exited()) break;
+    if (const int sig = hooks_.interrupted ? hooks_.interrupted() : 0) {
+      fail("", "interrupted by signal " + std::to_string(sig));
+      out_.exit_code = 130;
+      break;
+    }
+    watch_silence();
+    if (!out_.reason.empty()) break;
+    if (hooks_.progress && seconds_since(last_progress) > 0.2) {
+      hooks_.progress(watch_, since_start(), false);
+      last_progress = Clock::now();
+    }
+    participant_.wait(std::chrono::milliseconds(20));
+  }
+}
+
+void Supervisor::conclude() {
   double done_max = 0;
   bool all_done = true;
   for (const auto& [name, w] : watch_) {
@@ -378,7 +402,6 @@ SupervisedRun Supervisor::run() {
     for (NodeHost* host : hosts_) host->request_stop();
     for (NodeHost* host : hosts_) host->stop_all(2.0);
   }
-  return out_;
 }
 
 }  // namespace mechsim::cosim

@@ -97,12 +97,12 @@ ExportConfig export_config(const config::Scene& scene, const ExportRequest& requ
   return c;
 }
 
-std::string model_description_xml(const ExportedParticipant& p, int fmi_version, const std::string& id,
-                                   const std::string& token) {
-  if (fmi_version != 2 && fmi_version != 3) throw std::invalid_argument("expected FMI version 2 or 3");
-  const bool v2 = fmi_version == 2;
-  const ExportConfig& c = p.config();
-  pugi::xml_document doc;
+namespace {
+
+// The passes of model_description_xml, one per element of the document, in document order.
+
+// <fmiModelDescription> and its attributes.
+pugi::xml_node add_model_description(pugi::xml_document& doc, const ExportConfig& c, bool v2, const std::string& token) {
   auto decl = doc.append_child(pugi::node_declaration);
   decl.append_attribute("version") = "1.0";
   decl.append_attribute("encoding") = "UTF-8";
@@ -118,10 +118,13 @@ std::string model_description_xml(const ExportedParticipant& p, int fmi_version,
   root.append_attribute("generationTool") = "mechsim fmu export";
   root.append_attribute("variableNamingConvention") = "flat";
   if (v2) root.append_attribute("numberOfEventIndicators") = 0;
+  return root;
+}
 
-  // The capability flags it really has (docs/fmi.md): any step length (the integrator stops
-  // where it is asked to), FMU state get/set and serialized (ExportedParticipant::State);
-  // no derivatives, no early return, no event mode.
+// <CoSimulation>: the capability flags it really has (docs/fmi.md): any step length (the
+// integrator stops where it is asked to), FMU state get/set and serialized
+// (ExportedParticipant::State); no derivatives, no early return, no event mode.
+void add_co_simulation(pugi::xml_node root, bool v2, const std::string& id) {
   auto cs = root.append_child("CoSimulation");
   cs.append_attribute("modelIdentifier") = id.c_str();
   cs.append_attribute("needsExecutionTool") = "false";
@@ -144,14 +147,19 @@ std::string model_description_xml(const ExportedParticipant& p, int fmi_version,
     cs.append_attribute("canReturnEarlyAfterIntermediateUpdate") = "false";
     cs.append_attribute("hasEventMode") = "false";
   }
-  add_units(root, p.variables());
-  if (c.time) {
-    auto experiment = root.append_child("DefaultExperiment");
-    experiment.append_attribute("startTime") = exact(c.time->start).c_str();
-    experiment.append_attribute("stopTime") = exact(c.time->end).c_str();
-    experiment.append_attribute("stepSize") = exact(c.time->step).c_str();
-  }
+}
 
+// <DefaultExperiment>, when the scene's time section came along.
+void add_default_experiment(pugi::xml_node root, const ExportConfig& c) {
+  if (!c.time) return;
+  auto experiment = root.append_child("DefaultExperiment");
+  experiment.append_attribute("startTime") = exact(c.time->start).c_str();
+  experiment.append_attribute("stopTime") = exact(c.time->end).c_str();
+  experiment.append_attribute("stepSize") = exact(c.time->step).c_str();
+}
+
+// <ModelVariables>: FMI 3's independent time first, then every exported variable.
+void add_model_variables(pugi::xml_node root, const ExportedParticipant& p, bool v2) {
   auto vars = root.append_child("ModelVariables");
   if (!v2) {
     auto t = vars.append_child("Float64");
@@ -175,7 +183,10 @@ std::string model_description_xml(const ExportedParticipant& p, int fmi_version,
     if (!v.unit.empty()) typed.append_attribute("unit") = v.unit.c_str();
     if (v.kind != VariableKind::output) typed.append_attribute("start") = exact(v.start).c_str();
   }
+}
 
+// <ModelStructure>: the outputs with their dependencies, and the initial unknowns.
+void add_model_structure(pugi::xml_node root, const ExportedParticipant& p, bool v2) {
   auto structure = root.append_child("ModelStructure");
   pugi::xml_node outputs = v2 ? structure.append_child("Outputs") : structure;
   for (std::size_t i = 0; i < p.variables().size(); ++i) {
@@ -191,7 +202,21 @@ std::string model_description_xml(const ExportedParticipant& p, int fmi_version,
     if (p.variables()[i].kind == VariableKind::output)
       initial.append_child(v2 ? "Unknown" : "InitialUnknown")
           .append_attribute(v2 ? "index" : "valueReference") = ExportedParticipant::value_reference(i);
+}
 
+}  // namespace
+
+std::string model_description_xml(const ExportedParticipant& p, int fmi_version, const std::string& id,
+                                   const std::string& token) {
+  if (fmi_version != 2 && fmi_version != 3) throw std::invalid_argument("expected FMI version 2 or 3");
+  const bool v2 = fmi_version == 2;
+  pugi::xml_document doc;
+  pugi::xml_node root = add_model_description(doc, p.config(), v2, token);
+  add_co_simulation(root, v2, id);
+  add_units(root, p.variables());
+  add_default_experiment(root, p.config());
+  add_model_variables(root, p, v2);
+  add_model_structure(root, p, v2);
   std::ostringstream out;
   doc.save(out, "  ");
   return out.str();

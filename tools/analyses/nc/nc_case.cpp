@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "mechsim/cosim/coupling/coupling_spec.h"
 #include "mechsim/cosim/nc_params.h"
 
 namespace mechsim::tools::nc_analyses {
@@ -89,7 +90,7 @@ SlideCase slide_case_from_scene(const config::Scene& scene, const NcDesignSettin
   // different value in the slide's params, which the time run would silently ignore.
   for (const auto& c : scene.connections) {
     if (!c.coupling || (c.from != p.name && c.to != p.name)) continue;
-    const double stiffness = cosim::parse_coupling(*c.coupling).params.stiffness;
+    const double stiffness = cosim::coupling::parse_coupling(*c.coupling).params.stiffness;
     if (p.params.has("coupling_stiffness") &&
         std::abs(result.data.coupling_stiffness - stiffness) > 1e-9 * stiffness)
       p.params.child("coupling_stiffness")

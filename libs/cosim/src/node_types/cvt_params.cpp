@@ -40,18 +40,56 @@ void parse_range(const ConfigNode& p, std::string_view key, config::Dimension d,
   hi = b;
 }
 
-}  // namespace
+// `friction: {disc, ring, link_link, support_ring, support_disc}`.
+void parse_friction(const ConfigNode& f, cvt::CvtParams& m) {
+  f.allow_only({"disc", "ring", "link_link", "support_ring", "support_disc"});
+  m.mu_D = f.positive_quantity_or("disc", dim::dimensionless, m.mu_D);
+  m.mu_C = f.positive_quantity_or("ring", dim::dimensionless, m.mu_C);
+  m.mu_E = f.non_negative_quantity_or("link_link", dim::dimensionless, m.mu_E);
+  m.mu_SUC = f.non_negative_quantity_or("support_ring", dim::dimensionless, m.mu_SUC);
+  m.mu_SU = f.non_negative_quantity_or("support_disc", dim::dimensionless, m.mu_SU);
+}
 
-CvtConfig parse_cvt_config(const ConfigNode& p, const std::vector<std::string>& other_keys) {
-  std::vector<std::string> keys{"belt", "driving", "neutral_radius", "link_thickness", "rocking_radius",
-                                "rocking_edge_length", "closing_angle", "filling_degree", "link_mass",
-                                "disc_cone_angle", "ring_cone_angle", "friction", "faces", "admissible_stress",
-                                "reduced_modulus", "curvature_design_radii", "bearings", "validated_range",
-                                "numerics", "clamping", "level"};
-  keys.insert(keys.end(), other_keys.begin(), other_keys.end());
-  p.allow_only(keys);
-  CvtConfig c;
-  cvt::CvtParams& m = c.params;
+// `faces: {disc_thickness, disc_length, ring_thickness, ring_length, support_area}`.
+void parse_faces(const ConfigNode& f, cvt::CvtParams& m) {
+  f.allow_only({"disc_thickness", "disc_length", "ring_thickness", "ring_length", "support_area"});
+  m.t_D = f.positive_quantity_or("disc_thickness", dim::length, m.t_D);
+  m.l_D = f.positive_quantity_or("disc_length", dim::length, m.l_D);
+  m.t_C = f.positive_quantity_or("ring_thickness", dim::length, m.t_C);
+  m.l_C = f.positive_quantity_or("ring_length", dim::length, m.l_C);
+  m.A_SU = f.positive_quantity_or("support_area", dim::length.pow(2), m.A_SU);
+}
+
+// `numerics: {shape_resolution, push_force_step, angle_convention, code_quirks, round_clamping_force}`.
+void parse_numerics(const ConfigNode& n, cvt::CvtParams& m) {
+  n.allow_only({"shape_resolution", "push_force_step", "angle_convention", "code_quirks", "round_clamping_force"});
+  m.acc = static_cast<int>(n.integer_or("shape_resolution", m.acc));
+  if (m.acc < 1 || m.acc > 3) n.child("shape_resolution").fail("expected 1, 2 (the thesis) or 3");
+  m.duwproc = n.positive_quantity_or("push_force_step", dim::dimensionless, m.duwproc);
+  if (m.duwproc > 1.0) n.child("push_force_step").fail("expected a fraction of T/r in (0, 100 %], e.g. 5 %");
+  m.full_angle = n.choice_or("angle_convention", {"full", "half"}, "full") == "full";
+  const bool quirks = n.boolean_or("code_quirks", true);
+  m.quirk_muSUC_radial = m.quirk_last_sweep_FA = quirks;
+  m.round_clamping_force = n.boolean_or("round_clamping_force", m.round_clamping_force);
+}
+
+// `clamping: {mode: safety_factor | force, safety_factor, force}`.
+void parse_clamping(const ConfigNode& k, CvtConfig& c) {
+  k.allow_only({"mode", "safety_factor", "force"});
+  const std::string mode = k.choice_or("mode", {"safety_factor", "force"}, "safety_factor");
+  if (mode == "force") {
+    c.clamp = cvt::ClampMode::clamping_force;
+    if (!k.has("force")) k.fail("expected `force` (e.g. 8 kN) with mode: force");
+    c.clamping_force = k.non_negative_quantity("force", dim::force);
+    if (k.has("safety_factor")) k.child("safety_factor").fail("expected no safety_factor with mode: force");
+  } else {
+    if (k.has("force")) k.child("force").fail("expected no force with mode: safety_factor");
+    c.safety_factor = k.positive_quantity_or("safety_factor", dim::dimensionless, c.safety_factor);
+  }
+}
+
+// The belt's and the variator's geometry and materials (the top-level keys of params:).
+void parse_geometry(const ConfigNode& p, cvt::CvtParams& m) {
   m.lambda = p.choice_or("belt", {"split", "lambda"}, "split") == "split" ? 1 : 2;
   m.disc_driving = p.choice_or("driving", {"intermediate_body", "disc"}, "intermediate_body") == "disc";
   m.r_C = p.positive_quantity_or("neutral_radius", dim::length, m.r_C);
@@ -67,22 +105,23 @@ CvtConfig parse_cvt_config(const ConfigNode& p, const std::vector<std::string>& 
   m.beta_C = p.positive_quantity_or("ring_cone_angle", dim::angle, m.beta_C);
   for (const char* k : {"disc_cone_angle", "ring_cone_angle"})
     if (p.has(k) && p.quantity(k, dim::angle) >= std::numbers::pi / 2) p.child(k).fail("expected a cone angle below 90 deg");
-  if (auto f = p.optional_child("friction")) {
-    f->allow_only({"disc", "ring", "link_link", "support_ring", "support_disc"});
-    m.mu_D = f->positive_quantity_or("disc", dim::dimensionless, m.mu_D);
-    m.mu_C = f->positive_quantity_or("ring", dim::dimensionless, m.mu_C);
-    m.mu_E = f->non_negative_quantity_or("link_link", dim::dimensionless, m.mu_E);
-    m.mu_SUC = f->non_negative_quantity_or("support_ring", dim::dimensionless, m.mu_SUC);
-    m.mu_SU = f->non_negative_quantity_or("support_disc", dim::dimensionless, m.mu_SU);
-  }
-  if (auto f = p.optional_child("faces")) {
-    f->allow_only({"disc_thickness", "disc_length", "ring_thickness", "ring_length", "support_area"});
-    m.t_D = f->positive_quantity_or("disc_thickness", dim::length, m.t_D);
-    m.l_D = f->positive_quantity_or("disc_length", dim::length, m.l_D);
-    m.t_C = f->positive_quantity_or("ring_thickness", dim::length, m.t_C);
-    m.l_C = f->positive_quantity_or("ring_length", dim::length, m.l_C);
-    m.A_SU = f->positive_quantity_or("support_area", dim::length.pow(2), m.A_SU);
-  }
+}
+
+}  // namespace
+
+CvtConfig parse_cvt_config(const ConfigNode& p, const std::vector<std::string>& other_keys) {
+  std::vector<std::string> keys{"belt", "driving", "neutral_radius", "link_thickness", "rocking_radius",
+                                "rocking_edge_length", "closing_angle", "filling_degree", "link_mass",
+                                "disc_cone_angle", "ring_cone_angle", "friction", "faces", "admissible_stress",
+                                "reduced_modulus", "curvature_design_radii", "bearings", "validated_range",
+                                "numerics", "clamping", "level"};
+  keys.insert(keys.end(), other_keys.begin(), other_keys.end());
+  p.allow_only(keys);
+  CvtConfig c;
+  cvt::CvtParams& m = c.params;
+  parse_geometry(p, m);
+  if (auto f = p.optional_child("friction")) parse_friction(*f, m);
+  if (auto f = p.optional_child("faces")) parse_faces(*f, m);
   m.sigma_admissible = p.positive_quantity_or("admissible_stress", dim::pressure, m.sigma_admissible);
   m.E_R = p.positive_quantity_or("reduced_modulus", dim::pressure, m.E_R);
   if (auto r = p.optional_child("curvature_design_radii")) {
@@ -104,30 +143,8 @@ CvtConfig parse_cvt_config(const ConfigNode& p, const std::vector<std::string>& 
     parse_range(*v, "torque", dim::torque, m.torque_min, m.torque_max);
     parse_range(*v, "speed", dim::angular_velocity, m.speed_min, m.speed_max);
   }
-  if (auto n = p.optional_child("numerics")) {
-    n->allow_only({"shape_resolution", "push_force_step", "angle_convention", "code_quirks", "round_clamping_force"});
-    m.acc = static_cast<int>(n->integer_or("shape_resolution", m.acc));
-    if (m.acc < 1 || m.acc > 3) n->child("shape_resolution").fail("expected 1, 2 (the thesis) or 3");
-    m.duwproc = n->positive_quantity_or("push_force_step", dim::dimensionless, m.duwproc);
-    if (m.duwproc > 1.0) n->child("push_force_step").fail("expected a fraction of T/r in (0, 100 %], e.g. 5 %");
-    m.full_angle = n->choice_or("angle_convention", {"full", "half"}, "full") == "full";
-    const bool quirks = n->boolean_or("code_quirks", true);
-    m.quirk_muSUC_radial = m.quirk_last_sweep_FA = quirks;
-    m.round_clamping_force = n->boolean_or("round_clamping_force", m.round_clamping_force);
-  }
-  if (auto k = p.optional_child("clamping")) {
-    k->allow_only({"mode", "safety_factor", "force"});
-    const std::string mode = k->choice_or("mode", {"safety_factor", "force"}, "safety_factor");
-    if (mode == "force") {
-      c.clamp = cvt::ClampMode::clamping_force;
-      if (!k->has("force")) k->fail("expected `force` (e.g. 8 kN) with mode: force");
-      c.clamping_force = k->non_negative_quantity("force", dim::force);
-      if (k->has("safety_factor")) k->child("safety_factor").fail("expected no safety_factor with mode: force");
-    } else {
-      if (k->has("force")) k->child("force").fail("expected no force with mode: safety_factor");
-      c.safety_factor = k->positive_quantity_or("safety_factor", dim::dimensionless, c.safety_factor);
-    }
-  }
+  if (auto n = p.optional_child("numerics")) parse_numerics(*n, m);
+  if (auto k = p.optional_child("clamping")) parse_clamping(*k, c);
   c.level = p.choice_or("level", {"L1", "L0"}, "L1") == "L0" ? cvt::Level::L0 : cvt::Level::L1;
   return c;
 }

@@ -112,18 +112,4 @@ nc::ServoAmplifierParams parse_servo_amplifier_params(const ConfigNode& p) {
   return a;
 }
 
-CouplingSpec parse_coupling(const ConfigNode& c) {
-  c.allow_only({"scheme", "stiffness", "damping", "levels"});
-  CouplingSpec spec;
-  spec.scheme = c.choice_or("scheme", {"compliant", "torque", "interface_jacobian"}, "compliant");
-  spec.params.stiffness = c.positive_quantity("stiffness", dim::torsional_stiffness);
-  spec.params.damping = c.non_negative_quantity_or("damping", dim::rotational_damping, 0.0);
-  if (c.has("levels")) {
-    if (spec.scheme != "interface_jacobian") c.child("levels").fail("expected 'levels' only with scheme: interface_jacobian");
-    spec.levels = static_cast<int>(c.integer("levels"));
-    if (spec.levels < 1 || spec.levels > 16) c.child("levels").fail("expected a number of torque levels per macro step in 1..16");
-  }
-  return spec;
-}
-
 }  // namespace mechsim::cosim

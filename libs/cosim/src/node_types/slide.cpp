@@ -3,6 +3,7 @@
 // angle and speed across the coupling and evaluates it itself, or (interface_jacobian) takes
 // the coupling torque from the coupling solve.
 #include "mechsim/cosim/catalog.h"
+#include "mechsim/cosim/coupling/coupling_spec.h"
 #include "mechsim/cosim/nc_params.h"
 #include "mechsim/models/nc/slide_block.h"
 
@@ -12,12 +13,12 @@ namespace {
 std::unique_ptr<models::Block> make_slide(const config::ConfigNode& p, const config::ConfigNode* coupling) {
   models::nc::SlideBlockOptions options = parse_slide_options(p);
   if (coupling) {
-    const CouplingSpec spec = parse_coupling(*coupling);
+    const coupling::CouplingSpec spec = coupling::parse_coupling(*coupling);
     options.coupling = spec.params;
     // compliant and torque: the slide side evaluates the element; interface_jacobian: the
     // torque comes from the coupling solve.
-    options.coupling_input = spec.scheme == "interface_jacobian" ? models::nc::CouplingInput::torque
-                                                                 : models::nc::CouplingInput::compliant;
+    options.coupling_input = spec.scheme == coupling::CouplingScheme::interface_jacobian ? models::nc::CouplingInput::torque
+                                                                                         : models::nc::CouplingInput::compliant;
   }
   try {
     return std::make_unique<models::nc::SlideBlock>(options);

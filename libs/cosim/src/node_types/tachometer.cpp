@@ -3,6 +3,7 @@
 // across the coupling, the spindle's angle and speed (compliant) or the coupling torque
 // (torque; interface_jacobian, where the torque comes from the coupling solve).
 #include "mechsim/cosim/catalog.h"
+#include "mechsim/cosim/coupling/coupling_spec.h"
 #include "mechsim/cosim/nc_params.h"
 #include "mechsim/models/nc/motor_tacho_block.h"
 
@@ -13,10 +14,10 @@ std::unique_ptr<models::Block> make_tachometer(const config::ConfigNode& p, cons
   models::nc::MotorTachoBlockOptions options;
   options.motor = parse_motor_tacho_params(p);
   if (coupling) {
-    CouplingSpec spec = parse_coupling(*coupling);
+    const coupling::CouplingSpec spec = coupling::parse_coupling(*coupling);
     options.coupling = spec.params;
-    options.coupling_input =
-        spec.scheme == "compliant" ? models::nc::CouplingInput::compliant : models::nc::CouplingInput::torque;
+    options.coupling_input = spec.scheme == coupling::CouplingScheme::compliant ? models::nc::CouplingInput::compliant
+                                                                              : models::nc::CouplingInput::torque;
   }
   return std::make_unique<models::nc::MotorTachoBlock>(options);
 }

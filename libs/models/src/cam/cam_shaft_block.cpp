@@ -15,39 +15,46 @@ enum Output { out_angle, out_speed, out_lift, out_lift_d1, out_lift_d2, out_pres
               out_shaft_torque, out_drive_power, out_acceleration, out_drive_load_torque,
               out_drive_load_inertia, out_kinetic_energy, out_segment_energy, out_segment_damping_power };
 enum State { x_angle, x_speed, x_twist };
+
+// The parameters' own consistency, before any port is declared (std::invalid_argument).
+void check_params(const CamShaftParams& p) {
+  if (!(p.pitch_radius > 0.0)) throw std::invalid_argument("cam_shaft: pitch radius must be > 0");
+  if (!(std::abs(p.eccentricity) < p.pitch_radius))
+    throw std::invalid_argument("cam_shaft: |eccentricity| must be smaller than the pitch radius");
+  if (!std::isfinite(p.speed) || !std::isfinite(p.initial_angle))
+    throw std::invalid_argument("cam_shaft: speed and initial angle must be finite");
+  validate(p.drive);
+  if (!(p.gear_ratio >= 0.0 && std::isfinite(p.gear_ratio)))
+    throw std::invalid_argument("cam_shaft: the gear ratio must be finite and >= 0");
+  const bool driven = p.gear_ratio > 0.0;  // CamShaftBlock::is_driven
+  if (driven && p.drive.is_torque_source())
+    throw std::invalid_argument("cam_shaft: a shaft driven through a gear has no drive torque of its own");
+  if (driven && !(p.inertia_kgm2 >= 0.0 && std::isfinite(p.inertia_kgm2)))
+    throw std::invalid_argument("cam_shaft: the shaft inertia must be finite and >= 0");
+  if (p.segment) {
+    validate(*p.segment);
+    if (driven || p.drive.is_torque_source())
+      throw std::invalid_argument("cam_shaft: a shaft driven through a segment has no gear and no drive torque of its own");
+    if (!(p.inertia_kgm2 > 0.0 && std::isfinite(p.inertia_kgm2)))
+      throw std::invalid_argument("cam_shaft: a shaft driven through a segment needs a shaft inertia > 0");
+    if (p.initial_speed && !std::isfinite(*p.initial_speed))
+      throw std::invalid_argument("cam_shaft: the initial speed must be finite");
+  }
+  const bool dynamic = p.drive.is_torque_source();
+  if (dynamic) {
+    // Dwells reflect no follower inertia: the shaft's own inertia must carry ω̇ there.
+    if (!(p.inertia_kgm2 > 0.0 && std::isfinite(p.inertia_kgm2)))
+      throw std::invalid_argument("cam_shaft: a torque drive needs a shaft inertia > 0");
+    if (p.initial_speed && !std::isfinite(*p.initial_speed))
+      throw std::invalid_argument("cam_shaft: the initial speed must be finite");
+  }
+}
 }  // namespace
 
 CamShaftBlock::CamShaftBlock(CamShaftParams params) : Block("cam_shaft"), params_(std::move(params)) {
-  if (!(params_.pitch_radius > 0.0)) throw std::invalid_argument("cam_shaft: pitch radius must be > 0");
-  if (!(std::abs(params_.eccentricity) < params_.pitch_radius))
-    throw std::invalid_argument("cam_shaft: |eccentricity| must be smaller than the pitch radius");
-  if (!std::isfinite(params_.speed) || !std::isfinite(params_.initial_angle))
-    throw std::invalid_argument("cam_shaft: speed and initial angle must be finite");
-  validate(params_.drive);
-  if (!(params_.gear_ratio >= 0.0 && std::isfinite(params_.gear_ratio)))
-    throw std::invalid_argument("cam_shaft: the gear ratio must be finite and >= 0");
+  check_params(params_);
   const bool driven = is_driven();
-  if (driven && params_.drive.is_torque_source())
-    throw std::invalid_argument("cam_shaft: a shaft driven through a gear has no drive torque of its own");
-  if (driven && !(params_.inertia_kgm2 >= 0.0 && std::isfinite(params_.inertia_kgm2)))
-    throw std::invalid_argument("cam_shaft: the shaft inertia must be finite and >= 0");
-  if (params_.segment) {
-    validate(*params_.segment);
-    if (driven || params_.drive.is_torque_source())
-      throw std::invalid_argument("cam_shaft: a shaft driven through a segment has no gear and no drive torque of its own");
-    if (!(params_.inertia_kgm2 > 0.0 && std::isfinite(params_.inertia_kgm2)))
-      throw std::invalid_argument("cam_shaft: a shaft driven through a segment needs a shaft inertia > 0");
-    if (params_.initial_speed && !std::isfinite(*params_.initial_speed))
-      throw std::invalid_argument("cam_shaft: the initial speed must be finite");
-  }
   const bool dynamic = params_.drive.is_torque_source();
-  if (dynamic) {
-    // Dwells reflect no follower inertia: the shaft's own inertia must carry ω̇ there.
-    if (!(params_.inertia_kgm2 > 0.0 && std::isfinite(params_.inertia_kgm2)))
-      throw std::invalid_argument("cam_shaft: a torque drive needs a shaft inertia > 0");
-    if (params_.initial_speed && !std::isfinite(*params_.initial_speed))
-      throw std::invalid_argument("cam_shaft: the initial speed must be finite");
-  }
   const int load = declare_input("load_torque", "N*m", 0.0);
   const int reflected = declare_input("reflected_inertia", "kg*m^2", 0.0);
   using Ft = std::vector<int>;

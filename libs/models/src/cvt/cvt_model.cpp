@@ -331,14 +331,17 @@ CvtResult CvtModel::evaluate(const CvtOperatingPoint& op) {
   return {};
 }
 
-CvtResult CvtModel::evaluate_tc(const CvtOperatingPoint& op, double T_C, double v_K) {
-  const BeltShape b = shape(op.s);
+namespace {
+
+// The result's account of the operating point and the belt shape, before any force; flags a
+// point outside the validated range or at rest.
+CvtResult operating_point(const CvtParams& p, const BeltShape& b, const CvtOperatingPoint& op, double T_C) {
   CvtResult r;
   r.level = op.level;
   r.s = op.s;
-  r.z_max = b.z * p_.r_C;
-  r.r_D = b.r_D() * p_.r_C;
-  r.r_F = b.rf * p_.r_C;
+  r.z_max = b.z * p.r_C;
+  r.r_D = b.r_D() * p.r_C;
+  r.r_F = b.rf * p.r_C;
   r.ratio = b.ratio();
   r.gamma_D = b.gamma_D;
   r.gamma_C = b.gamma_C;
@@ -348,59 +351,75 @@ CvtResult CvtModel::evaluate_tc(const CvtOperatingPoint& op, double T_C, double 
   r.omega_C = op.omega_C;
   r.omega_D = r.ratio * op.omega_C;  // (4.60)
   r.T_C = T_C;
-  r.T_over_r = T_C / p_.r_C;      // (4.61)
-  r.v_PB = op.omega_C * p_.r_C;   // (4.62)
+  r.T_over_r = T_C / p.r_C;      // (4.61)
+  r.v_PB = op.omega_C * p.r_C;   // (4.62)
   r.slip = b.slip;
   r.F_K_applied = op.clamp == ClampMode::clamping_force ? op.F_K_applied : nan;
 
   const double tol = 1e-9;
-  if (op.s < p_.s_min - tol || op.s > p_.s_max + tol || T_C < p_.torque_min - tol || T_C > p_.torque_max + tol ||
-      op.omega_C < p_.speed_min * (1 - tol) || op.omega_C > p_.speed_max * (1 + tol))
+  if (op.s < p.s_min - tol || op.s > p.s_max + tol || T_C < p.torque_min - tol || T_C > p.torque_max + tol ||
+      op.omega_C < p.speed_min * (1 - tol) || op.omega_C > p.speed_max * (1 + tol))
     r.flags |= kOutsideValidatedRange;
   if (op.omega_C == 0.0) r.flags |= kZeroSpeed;
+  return r;
+}
 
+}  // namespace
+
+void CvtModel::unloaded(CvtResult& r, const CvtOperatingPoint& op, double T_C) const {
+  // Unloaded (or reversed) belt: the thesis's algorithm is undefined (F_P0 step = 0).
   const double cbD = std::cos(p_.beta_D);
+  r.flags |= T_C == 0.0 ? kZeroTorque : kTorqueReversal;
+  r.F_K = op.clamp == ClampMode::clamping_force ? op.F_K_applied : 0.0;
+  r.v_K = nan;
+  r.bearings_prim = bearing_losses(true, p_.r_C, op.omega_C, r.F_K, r.T_over_r);
+  r.bearings_sec = bearing_losses(false, r.r_D, r.omega_D, r.F_K, r.T_over_r);
+  r.T_L_prim = r.bearings_prim.loss_torque();
+  r.T_L_sec = r.bearings_sec.loss_torque();
+  r.T_1 = T_C + r.T_L_prim;
+  r.T_C_capacity = p_.r_C * p_.lambda * p_.mu_D * r.F_K / cbD;
+  if (T_C == 0.0) {
+    r.eta_PB = 1.0;
+    r.P_loss_belt = 0.0;
+    r.T_D = 0.0;
+    r.T_2 = -r.T_L_sec;
+    r.eta_L_prim = r.eta_L_sec = r.eta_SYS = 0.0;  // no power transmitted
+  } else {
+    r.eta_PB = r.eta_L_prim = r.eta_L_sec = r.eta_SYS = r.P_loss_belt = r.T_D = r.T_2 = nan;
+  }
+}
+
+void CvtModel::gross_slip(CvtResult& r, const CvtOperatingPoint& op, double T_C, double v_K) const {
+  const double cbD = std::cos(p_.beta_D);
+  r.flags |= kGrossSlip;
+  r.v_K = v_K;
+  r.v_KD = v_K;
+  r.F_K = op.F_K_applied;
+  r.bearings_prim = bearing_losses(true, p_.r_C, op.omega_C, r.F_K, r.T_over_r);
+  r.bearings_sec = bearing_losses(false, r.r_D, r.omega_D, r.F_K, r.T_over_r);
+  r.T_L_prim = r.bearings_prim.loss_torque();
+  r.T_L_sec = r.bearings_sec.loss_torque();
+  r.T_1 = T_C + r.T_L_prim;
+  r.eta_PB = r.eta_L_sec = r.eta_SYS = r.P_loss_belt = r.T_D = r.T_2 = r.v_KC = nan;
+  r.eta_L_prim = T_C / r.T_1;
+  r.mu_D_required = cbD * r.T_over_r / (p_.lambda * op.F_K_applied);
+  r.sigma.fill(nan);
+}
+
+CvtResult CvtModel::evaluate_tc(const CvtOperatingPoint& op, double T_C, double v_K) {
+  const BeltShape b = shape(op.s);
+  CvtResult r = operating_point(p_, b, op, T_C);
   if (T_C <= 0.0) {
-    // Unloaded (or reversed) belt: the thesis's algorithm is undefined (F_P0 step = 0).
-    r.flags |= T_C == 0.0 ? kZeroTorque : kTorqueReversal;
-    r.F_K = op.clamp == ClampMode::clamping_force ? op.F_K_applied : 0.0;
-    r.v_K = nan;
-    r.bearings_prim = bearing_losses(true, p_.r_C, op.omega_C, r.F_K, r.T_over_r);
-    r.bearings_sec = bearing_losses(false, r.r_D, r.omega_D, r.F_K, r.T_over_r);
-    r.T_L_prim = r.bearings_prim.loss_torque();
-    r.T_L_sec = r.bearings_sec.loss_torque();
-    r.T_1 = T_C + r.T_L_prim;
-    r.T_C_capacity = p_.r_C * p_.lambda * p_.mu_D * r.F_K / cbD;
-    if (T_C == 0.0) {
-      r.eta_PB = 1.0;
-      r.P_loss_belt = 0.0;
-      r.T_D = 0.0;
-      r.T_2 = -r.T_L_sec;
-      r.eta_L_prim = r.eta_L_sec = r.eta_SYS = 0.0;  // no power transmitted
-    } else {
-      r.eta_PB = r.eta_L_prim = r.eta_L_sec = r.eta_SYS = r.P_loss_belt = r.T_D = r.T_2 = nan;
-    }
+    unloaded(r, op, T_C);
     return r;
   }
-
   if (op.clamp == ClampMode::clamping_force) {
+    const double cbD = std::cos(p_.beta_D);
     // v_KD = λ μ_D F_K/(cos β_D T/r) (4.64) with (4.56), (4.67).
     v_K = p_.lambda * p_.mu_D * op.F_K_applied / (cbD * r.T_over_r);
     r.T_C_capacity = p_.r_C * p_.lambda * p_.mu_D * op.F_K_applied / cbD;
     if (v_K < 1.0) {
-      r.flags |= kGrossSlip;
-      r.v_K = v_K;
-      r.v_KD = v_K;
-      r.F_K = op.F_K_applied;
-      r.bearings_prim = bearing_losses(true, p_.r_C, op.omega_C, r.F_K, r.T_over_r);
-      r.bearings_sec = bearing_losses(false, r.r_D, r.omega_D, r.F_K, r.T_over_r);
-      r.T_L_prim = r.bearings_prim.loss_torque();
-      r.T_L_sec = r.bearings_sec.loss_torque();
-      r.T_1 = T_C + r.T_L_prim;
-      r.eta_PB = r.eta_L_sec = r.eta_SYS = r.P_loss_belt = r.T_D = r.T_2 = r.v_KC = nan;
-      r.eta_L_prim = T_C / r.T_1;
-      r.mu_D_required = cbD * r.T_over_r / (p_.lambda * op.F_K_applied);
-      r.sigma.fill(nan);
+      gross_slip(r, op, T_C, v_K);
       return r;
     }
   }
@@ -418,26 +437,30 @@ CvtResult CvtModel::evaluate_tc(const CvtOperatingPoint& op, double T_C, double 
   return r;
 }
 
-void CvtModel::solve_l1(CvtResult& r, const BeltShape& b, double v_K) {
+double CvtModel::min_push_force(CvtResult& r, const BeltShape& b, const LinkGeometry& g) const {
   const CvtParams& p = p_;
-  const LinkGeometry g = shapes_.geometry();
-  const double Tr = r.T_over_r, v = r.v_PB, lam = p.lambda;
-  const bool split = p.lambda == 1 && p.mu_SU > 0.0;
+  const double v = r.v_PB;
   // e. centrifugal forces (4.13); f. transition packet (4.29)–(4.31), F_Pmin (4.35).
   r.F_C_D = p.link_mass * v * v / r.r_D;
   r.F_C_C = p.link_mass * v * v / p.r_C;
   const double nFd = 1.0 + b.psi / b.tau_F;
   r.F_C_packet = nFd * p.link_mass * v * v / (b.rf * p.r_C);
-  const double step = p.duwproc * Tr;
-  double FPmin = 0.0;
+  const double step = p.duwproc * r.T_over_r;
   for (int k = 1; k <= kMaxPushSteps; ++k) {
     const double cand = k * step;
-    if (packet(r.F_C_packet / cand, b, g).max_dev_VP <= 0.025) {
-      FPmin = cand;
-      break;
-    }
+    if (packet(r.F_C_packet / cand, b, g).max_dev_VP <= 0.025) return cand;
     if (r.F_C_packet == 0.0) break;  // VP does not depend on k: no push force will do
   }
+  return 0.0;
+}
+
+void CvtModel::solve_l1(CvtResult& r, const BeltShape& b, double v_K) {
+  const CvtParams& p = p_;
+  const LinkGeometry g = shapes_.geometry();
+  const double Tr = r.T_over_r, v = r.v_PB, lam = p.lambda;
+  const bool split = p.lambda == 1 && p.mu_SU > 0.0;
+  const double step = p.duwproc * Tr;
+  const double FPmin = min_push_force(r, b, g);
   if (FPmin == 0.0) {
     r.flags |= kNoSolution;
     return;

@@ -104,7 +104,19 @@ class ScenePlan {
   std::pair<int, int> resolve(const config::SignalRef& ref) const;
 
  private:
+  // The passes, in order (scene_plan.cpp): every participant's block and topic; the
+  // connections as inbound edges and cuts; the outputs that matter beyond their node;
+  // required inputs fed; Gauss-Seidel edges without cycles; no algebraic loop; compared and
+  // reported signals and time.scales known; then the step grid.
   static ScenePlan build_time_run(const config::Scene& scene);
+  void place_nodes();
+  void resolve_edges();
+  void mark_watched_outputs();
+  void check_required_inputs() const;
+  void order_gauss_seidel() const;
+  void check_algebraic_loops() const;
+  void resolve_signals() const;
+  int index_of(const std::string& name) const;  // -1: no such participant
   // Collects the blocks' scheduled events (and their angle events where a uniformly turning
   // shaft feeds them) and lands the grid on them.
   void land_on_scheduled_events();

@@ -119,6 +119,13 @@ class Supervisor {
   std::uint64_t last_step_of(const std::string& node) const;
 
  private:
+  // The passes of run().
+  void send_start();
+  void supervise();
+  void conclude();
+  void note_done_times();
+  void note_stepping_after_rollback();
+  bool finish_if_all_exited();  // true once every node's process has exited (the run is ok)
   void take_status();
   void check_exits(bool running);
   void roll_back();

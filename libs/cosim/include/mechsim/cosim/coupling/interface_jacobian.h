@@ -27,13 +27,11 @@
 #include <span>
 #include <vector>
 
+#include "mechsim/cosim/coupling/scheme.h"  // kMaxLevels
 #include "mechsim/models/block.h"
 #include "mechsim/solve/block_integrator.h"
 
 namespace mechsim::cosim::coupling {
-
-// Most torque levels per macro step the CouplingPrediction topic carries (idl/coupling.idl).
-inline constexpr int kMaxLevels = 16;
 // Most states of a block on a cut: the linearisation works on fixed-capacity matrices
 // (kMaxStates + 1 square, on the stack) so that it never allocates.
 inline constexpr int kMaxStates = 15;

@@ -145,6 +145,13 @@ class CvtModel {
  private:
   BeltShape checked_shape(double s, bool scalars_only);
   CvtResult evaluate_tc(const CvtOperatingPoint& op, double T_C, double v_K);
+  // The results of evaluate_tc where no force balance is solved: an unloaded or reversed
+  // belt (T_C <= 0), gross slip under a clamping force too low for T_C.
+  void unloaded(CvtResult& r, const CvtOperatingPoint& op, double T_C) const;
+  void gross_slip(CvtResult& r, const CvtOperatingPoint& op, double T_C, double v_K) const;
+  // Centrifugal forces into r, and the least push force F_Pmin that keeps the transition
+  // packet's deviation within bounds (0: none does).
+  double min_push_force(CvtResult& r, const BeltShape& b, const LinkGeometry& g) const;
   void solve_l1(CvtResult& r, const BeltShape& b, double v_K);
   void solve_l0(CvtResult& r, const BeltShape& b, double v_K);
   void finish(CvtResult& r, const BeltShape& b);
