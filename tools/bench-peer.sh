@@ -22,7 +22,8 @@
 # command to the last node done; the floor's and libcosim's loop alone). CPU per step and
 # memory are the whole command's, start-up included (GNU time; the sum of user and system
 # CPU of every process of the run), resident memory the peak of the summed RSS of all its
-# processes (sampled every 0.2 s), so a process per participant pays for each process.
+# processes (sampled every 0.2 s; at least the largest process's peak, for runs shorter than
+# that), so a process per participant pays for each process.
 #
 #   tools/bench-peer.sh [ROUNDS=3] [SCENE_KEY...]   keys: cam_press nc_slide_loop press_line line_shaft_16
 #   env: PEER_PREFIX  where tools/build-peer-libcosim.sh installed (default /work/peers, else
@@ -74,7 +75,7 @@ measure() {  # KEY MASTER ROUND RESULT_JSON COMMAND...
   local key=$1 master=$2 round=$3 result=$4
   shift 4
   rm -f "$result"
-  setsid /usr/bin/time -f '%e %U %S' -o "$tmp/time" "$@" > "$tmp/run.log" 2>&1 &
+  setsid /usr/bin/time -f '%e %U %S %M' -o "$tmp/time" "$@" > "$tmp/run.log" 2>&1 &
   local pid=$! peak=0 rss status=0
   while kill -0 "$pid" 2>/dev/null; do
     rss=$(ps -s "$pid" -o rss= 2>/dev/null | awk '{s += $1} END {print s + 0}')
@@ -82,7 +83,9 @@ measure() {  # KEY MASTER ROUND RESULT_JSON COMMAND...
     sleep 0.2
   done
   wait "$pid" || status=$?
-  read -r wall user sys < <(tail -1 "$tmp/time")
+  read -r wall user sys maxrss < <(tail -1 "$tmp/time")
+  # A run shorter than the sampling interval: its largest process's peak, from GNU time.
+  [ "$maxrss" -le "$peak" ] || peak=$maxrss
   if [ "$status" -ne 0 ]; then cp "$tmp/run.log" "$tmp/fail-$key-$master-$round.log"; fi
   python3 - "$key" "$master" "$round" "$status" "$wall" "$user" "$sys" "$peak" "$result" "$tmp/run.log" >> "$rows" <<'PY'
 import json, sys
@@ -138,8 +141,13 @@ for key in "${keys[@]}"; do
           measure "$key" "$master" "$round" "$result" "$cosim_timing" "$tmp/peer-$key/OspSystemStructure.xml" "$end" \
             "$(( $(nproc) > 1 ? $(nproc) - 1 : 1 ))" "$result" ;;
       esac
-      python3 -c 'import json,sys; r=json.loads(open(sys.argv[1]).readlines()[-1]); x=r["result"] or {};
-s=x.get("steps_per_second", x.get("steps_per_s")); print(f"  {r[\"scene\"]} round {r[\"round\"]} {r[\"master\"]}: " + (f"{s:.0f} steps/s" if s else "failed (exit %d)" % r["exit"]))' "$rows"
+      python3 - "$rows" <<'PY'
+import json, sys
+r = json.loads(open(sys.argv[1]).readlines()[-1])
+x = r["result"] or {}
+s = x.get("steps_per_second", x.get("steps_per_s"))
+print(f"  {r['scene']} round {r['round']} {r['master']}: " + (f"{s:.0f} steps/s" if s and r["exit"] == 0 else f"failed (exit {r['exit']})"))
+PY
     done
   done
 done
