@@ -46,6 +46,7 @@ cosim_timing=$prefix/bin/cosim_timing
 export CYCLONEDDS_URI="file://$PWD/config/dds/cyclonedds-loopback.xml"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
+trap 'echo "bench-peer: stopped at line $LINENO (exit $?)" >&2' ERR
 rows=$tmp/rows.jsonl
 : > "$rows"
 
@@ -75,7 +76,8 @@ measure() {  # KEY MASTER ROUND RESULT_JSON COMMAND...
   local key=$1 master=$2 round=$3 result=$4
   shift 4
   rm -f "$result"
-  setsid /usr/bin/time -f '%e %U %S %M' -o "$tmp/time" "$@" > "$tmp/run.log" 2>&1 &
+  # -w: should setsid have to fork (it does when it would lead a process group), it waits.
+  setsid -w /usr/bin/time -f '%e %U %S %M' -o "$tmp/time" "$@" > "$tmp/run.log" 2>&1 &
   local pid=$! peak=0 rss status=0
   while kill -0 "$pid" 2>/dev/null; do
     rss=$(ps -s "$pid" -o rss= 2>/dev/null | awk '{s += $1} END {print s + 0}')
@@ -83,7 +85,8 @@ measure() {  # KEY MASTER ROUND RESULT_JSON COMMAND...
     sleep 0.2
   done
   wait "$pid" || status=$?
-  read -r wall user sys maxrss < <(tail -1 "$tmp/time")
+  local wall=0 user=0 sys=0 maxrss=0
+  if [ -s "$tmp/time" ]; then read -r wall user sys maxrss < <(tail -1 "$tmp/time"); else status=${status/#0/125}; fi
   # A run shorter than the sampling interval: its largest process's peak, from GNU time.
   [ "$maxrss" -le "$peak" ] || peak=$maxrss
   if [ "$status" -ne 0 ]; then cp "$tmp/run.log" "$tmp/fail-$key-$master-$round.log"; fi
