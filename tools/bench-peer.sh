@@ -86,7 +86,7 @@ measure() {  # KEY MASTER ROUND RESULT_JSON COMMAND...
   done
   wait "$pid" || status=$?
   local wall=0 user=0 sys=0 maxrss=0
-  if [ -s "$tmp/time" ]; then read -r wall user sys maxrss < <(tail -1 "$tmp/time"); else status=${status/#0/125}; fi
+  if [ -s "$tmp/time" ]; then read -r wall user sys maxrss < <(tail -1 "$tmp/time"); elif [ "$status" -eq 0 ]; then status=125; fi
   # A run shorter than the sampling interval: its largest process's peak, from GNU time.
   [ "$maxrss" -le "$peak" ] || peak=$maxrss
   if [ "$status" -ne 0 ]; then cp "$tmp/run.log" "$tmp/fail-$key-$master-$round.log"; fi
