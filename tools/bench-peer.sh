@@ -80,7 +80,8 @@ measure() {  # KEY MASTER ROUND RESULT_JSON COMMAND...
   setsid -w /usr/bin/time -f '%e %U %S %M' -o "$tmp/time" "$@" > "$tmp/run.log" 2>&1 &
   local pid=$! peak=0 rss status=0
   while kill -0 "$pid" 2>/dev/null; do
-    rss=$(ps -s "$pid" -o rss= 2>/dev/null | awk '{s += $1} END {print s + 0}')
+    # (no session yet before the child's setsid: ps finds nothing and fails, pipefail)
+    rss=$({ ps -s "$pid" -o rss= 2>/dev/null || true; } | awk '{s += $1} END {print s + 0}')
     [ "$rss" -gt "$peak" ] && peak=$rss
     sleep 0.2
   done
