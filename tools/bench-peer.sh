@@ -19,9 +19,12 @@
 # stations --stations 16`); a scene the peer cannot take is reported as such, with why.
 #
 # Each run's steps/s is its own stepping rate (summary.json's steps_per_second, start
-# command to the last node done; the floor's and libcosim's loop alone). CPU per step and
-# memory are the whole command's, start-up included (GNU time; the sum of user and system
-# CPU of every process of the run), resident memory the peak of the summed RSS of all its
+# command to the last node done; the floor's and libcosim's loop alone). CPU per step is
+# given twice: the whole command's (GNU time: user + system CPU of every process of the
+# run, start-up included) and the stepping's: the floor and libcosim time their loop with
+# getrusage; for mechsim, each layout also runs ten steps (`*_start`) and the median CPU
+# of those is taken off the full runs' (start-up is N^2 in the participants, issue 42
+# item 4). Resident memory is the peak of the summed RSS of all its
 # processes (sampled every 0.2 s; at least the largest process's peak, for runs shorter than
 # that), so a process per participant pays for each process.
 #
@@ -68,6 +71,12 @@ end_of() {
     cam_press) echo 20 ;; nc_slide_loop) echo 1 ;; press_line) echo 10 ;; line_shaft_16) echo 2 ;;
   esac
 }
+# Ten macro steps of the scene: the start-up runs' end, whose CPU is taken off a full run's.
+start_end_of() {
+  case $1 in
+    nc_slide_loop) echo 0.00025 ;; *) echo 0.01 ;;
+  esac
+}
 
 # Runs a command in its own session under GNU time, sampling the session's summed RSS.
 # Appends {"scene", "master", "round", "exit", "wall_s", "cpu_s", "rss_kb", "result"} to the
@@ -110,7 +119,8 @@ for key in "${keys[@]}"; do
   scene=$(scene_of "$key")
   end=$(end_of "$key")
   sets=(--set "time.end=$end s")
-  masters=(floor default one_process process_each)
+  start_sets=(--set "time.end=$(start_end_of "$key") s")
+  masters=(floor default default_start one_process one_process_start process_each process_each_start)
   # The peer's input: every participant as an FMU and the system structure, once per scene.
   peer_note=""
   if [ ! -x "$cosim_timing" ]; then
@@ -133,11 +143,12 @@ for key in "${keys[@]}"; do
         floor) measure "$key" "$master" "$round" "$result" "$mechsim" bench "$scene" "${sets[@]}" --models-alone --json "$result" ;;
         floor_peer_coupling)
           measure "$key" "$master" "$round" "$result" "$mechsim" bench "$scene" "${sets[@]}" "${peer_sets[@]}" --models-alone --json "$result" ;;
-        default|one_process|process_each)
+        default*|one_process*|process_each*)
           layout=()
-          [ "$master" = one_process ] && layout=(--set processes=1)
-          [ "$master" = process_each ] && layout=(--set processes=per_participant)
-          measure "$key" "$master" "$round" "$result" "$mechsim" launch "$scene" "${sets[@]}" "${layout[@]}" \
+          case $master in one_process*) layout=(--set processes=1) ;; process_each*) layout=(--set processes=per_participant) ;; esac
+          run_sets=("${sets[@]}")
+          case $master in *_start) run_sets=("${start_sets[@]}") ;; esac
+          measure "$key" "$master" "$round" "$result" "$mechsim" launch "$scene" "${run_sets[@]}" "${layout[@]}" \
             --no-plot --no-progress --runs-dir "$tmp/runs" --json "$result"
           rm -rf "$tmp/runs" ;;
         libcosim_0) measure "$key" "$master" "$round" "$result" "$cosim_timing" "$tmp/peer-$key/OspSystemStructure.xml" "$end" 0 "$result" ;;
@@ -170,8 +181,8 @@ def steps_per_s(r):
 def steps(r):
     return (r["result"] or {}).get("steps")
 summary = []
-print("\n| scene | master | steps/s median (min-max) | x libcosim_0 | x floor | CPU us/step (whole command) | peak RSS MB (all processes) | runs |")
-print("|---|---|---|---|---|---|---|---|")
+print("\n| scene | master | steps/s median (min-max) | x libcosim_0 | x floor | CPU us/step, stepping | CPU us/step, whole command | start-up CPU s | peak RSS MB (all processes) | runs |")
+print("|---|---|---|---|---|---|---|---|---|---|")
 for scene in dict.fromkeys(r["scene"] for r in rows):
     med = {}
     for master in labels:
@@ -189,13 +200,26 @@ for scene in dict.fromkeys(r["scene"] for r in rows):
             continue
         rates = [steps_per_s(r) for r in ok]
         cpu = statistics.median(1e6 * r["cpu_s"] / steps(r) for r in ok)
+        starts = [r for r in runs if r["scene"] == scene and r["master"] == master + "_start" and r["exit"] == 0 and r["result"]]
+        start_cpu = statistics.median(r["cpu_s"] for r in starts) if starts else None
+        if "cpu_s" in (ok[0]["result"] or {}):  # the floor and libcosim: their loop's own
+            stepping = statistics.median(1e6 * r["result"]["cpu_s"] / steps(r) for r in ok)
+        elif starts:
+            start_steps = statistics.median(steps(r) for r in starts)
+            stepping = statistics.median(1e6 * (r["cpu_s"] - start_cpu) / (steps(r) - start_steps) for r in ok)
+        else:
+            stepping = None
         rss = statistics.median(r["rss_kb"] for r in ok) / 1024
         vs_peer = f"{med[master] / med['libcosim_0']:.3f}" if "libcosim_0" in med else "-"
         vs_floor = f"{med['floor'] / med[master]:.2f}" if "floor" in med else "-"
-        print(f"| {scene} | {label} | {med[master]:.0f} ({min(rates):.0f}-{max(rates):.0f}) | {vs_peer} | {vs_floor} | {cpu:.1f} | {rss:.0f} | {len(ok)} |")
+        stepping_text = f"{stepping:.1f}" if stepping is not None else "-"
+        start_text = f"{start_cpu:.2f}" if start_cpu is not None else "-"
+        print(f"| {scene} | {label} | {med[master]:.0f} ({min(rates):.0f}-{max(rates):.0f}) | {vs_peer} | {vs_floor} | {stepping_text} | {cpu:.1f} | {start_text} | {rss:.0f} | {len(ok)} |")
         summary.append({"scene": scene, "master": master, "steps_per_s_median": med[master], "steps_per_s": rates,
-                        "cpu_us_per_step_median": cpu, "peak_rss_mb_median": rss, "runs": len(ok), "failed": len(all_runs) - len(ok)})
-print("\nx libcosim_0: steps/s over libcosim's with 0 worker threads; x floor: the floor's steps/s over this row's (time per step over the floor's)")
+                        "cpu_us_per_step_stepping": stepping, "cpu_us_per_step_whole_command": cpu, "start_up_cpu_s": start_cpu,
+                        "peak_rss_mb_median": rss, "runs": len(ok), "failed": len(all_runs) - len(ok)})
+print("\nx libcosim_0: steps/s over libcosim's with 0 worker threads; x floor: the floor's steps/s over this row's (time per step over the floor's);"
+      " start-up CPU: a ten-step run of the layout, whole command")
 with open(sys.argv[2], "w") as f:
     json.dump({"load_average": os.getloadavg(), "nproc": os.cpu_count(), "scenes": notes, "summary": summary, "runs": runs}, f, indent=1)
 print(f"wrote {sys.argv[2]}")
