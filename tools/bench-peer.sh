@@ -20,13 +20,14 @@
 #
 # Each run's steps/s is its own stepping rate (summary.json's steps_per_second, start
 # command to the last node done; the floor's and libcosim's loop alone). CPU per step is
-# given twice: the whole command's (GNU time: user + system CPU of every process of the
-# run, start-up included) and the stepping's: the floor and libcosim time their loop with
-# getrusage; for mechsim, each layout also runs ten steps (`*_start`) and the median CPU
-# of those is taken off the full runs' (start-up is N^2 in the participants, issue 42
-# item 4). Resident memory is the peak of the summed RSS of all its
-# processes (sampled every 0.2 s; at least the largest process's peak, for runs shorter than
-# that), so a process per participant pays for each process.
+# the whole command's (GNU time: user + system CPU of every process of the run, start-up
+# included) and, for the floor and libcosim, their loop's alone (getrusage). For mechsim
+# the table shows what the whole command holds beside the steps: the CPU of a ten-step run
+# of the same layout (`*_start`: start-up, N^2 in the participants, issue 42 item 4) and
+# the wall time of the launcher's monolithic reference after the steps. Resident memory is
+# the peak of the summed RSS of all its processes (sampled every 0.2 s; at least the
+# largest process's peak, for runs shorter than that), so a process per participant pays
+# for each process.
 #
 #   tools/bench-peer.sh [ROUNDS=3] [SCENE_KEY...]   keys: cam_press nc_slide_loop press_line line_shaft_16
 #   env: PEER_PREFIX  where tools/build-peer-libcosim.sh installed (default /work/peers, else
@@ -180,9 +181,11 @@ def steps_per_s(r):
     return x.get("steps_per_second", x.get("steps_per_s"))
 def steps(r):
     return (r["result"] or {}).get("steps")
+def reference_s(r):
+    return ((r["result"] or {}).get("reference") or {}).get("wall_time_s", 0.0)
 summary = []
-print("\n| scene | master | steps/s median (min-max) | x libcosim_0 | x floor | CPU us/step, stepping | CPU us/step, whole command | start-up CPU s | peak RSS MB (all processes) | runs |")
-print("|---|---|---|---|---|---|---|---|---|---|")
+print("\n| scene | master | steps/s median (min-max) | x libcosim_0 | x floor | CPU us/step, loop alone | CPU us/step, whole command | start-up CPU s | reference wall s | peak RSS MB (all processes) | runs |")
+print("|---|---|---|---|---|---|---|---|---|---|---|")
 for scene in dict.fromkeys(r["scene"] for r in rows):
     med = {}
     for master in labels:
@@ -204,22 +207,26 @@ for scene in dict.fromkeys(r["scene"] for r in rows):
         start_cpu = statistics.median(r["cpu_s"] for r in starts) if starts else None
         if "cpu_s" in (ok[0]["result"] or {}):  # the floor and libcosim: their loop's own
             stepping = statistics.median(1e6 * r["result"]["cpu_s"] / steps(r) for r in ok)
-        elif starts:
-            start_steps = statistics.median(steps(r) for r in starts)
-            stepping = statistics.median(1e6 * (r["cpu_s"] - start_cpu) / (steps(r) - start_steps) for r in ok)
         else:
+            # mechsim's whole command holds the start-up and, after the steps, the
+            # launcher's monolithic reference over the whole time (summary "reference"),
+            # shown beside it: on a loaded machine their wall time is no measure of their
+            # CPU, so they are not taken off.
             stepping = None
+        reference = statistics.median(reference_s(r) for r in ok) if master in ("default", "one_process", "process_each") else None
         rss = statistics.median(r["rss_kb"] for r in ok) / 1024
         vs_peer = f"{med[master] / med['libcosim_0']:.3f}" if "libcosim_0" in med else "-"
         vs_floor = f"{med['floor'] / med[master]:.2f}" if "floor" in med else "-"
         stepping_text = f"{stepping:.1f}" if stepping is not None else "-"
         start_text = f"{start_cpu:.2f}" if start_cpu is not None else "-"
-        print(f"| {scene} | {label} | {med[master]:.0f} ({min(rates):.0f}-{max(rates):.0f}) | {vs_peer} | {vs_floor} | {stepping_text} | {cpu:.1f} | {start_text} | {rss:.0f} | {len(ok)} |")
+        reference_text = f"{reference:.2f}" if reference is not None else "-"
+        print(f"| {scene} | {label} | {med[master]:.0f} ({min(rates):.0f}-{max(rates):.0f}) | {vs_peer} | {vs_floor} | {stepping_text} | {cpu:.1f} | {start_text} | {reference_text} | {rss:.0f} | {len(ok)} |")
         summary.append({"scene": scene, "master": master, "steps_per_s_median": med[master], "steps_per_s": rates,
-                        "cpu_us_per_step_stepping": stepping, "cpu_us_per_step_whole_command": cpu, "start_up_cpu_s": start_cpu,
+                        "cpu_us_per_step_loop": stepping, "cpu_us_per_step_whole_command": cpu, "start_up_cpu_s": start_cpu,
+                        "reference_wall_s": reference,
                         "peak_rss_mb_median": rss, "runs": len(ok), "failed": len(all_runs) - len(ok)})
 print("\nx libcosim_0: steps/s over libcosim's with 0 worker threads; x floor: the floor's steps/s over this row's (time per step over the floor's);"
-      " start-up CPU: a ten-step run of the layout, whole command")
+      " start-up CPU: a ten-step run of the layout, whole command; reference: the launcher's monolithic run after the steps")
 with open(sys.argv[2], "w") as f:
     json.dump({"load_average": os.getloadavg(), "nproc": os.cpu_count(), "scenes": notes, "summary": summary, "runs": runs}, f, indent=1)
 print(f"wrote {sys.argv[2]}")
