@@ -33,7 +33,7 @@
 #   env: PEER_PREFIX  where tools/build-peer-libcosim.sh installed (default /work/peers, else
 #                     $HOME/.cache/mechsim-peers); without bin/cosim_timing there the
 #                     libcosim rows are skipped and said so
-#        BUILD_DIR    mechsim's build (default build), OUT  JSON rows (default bench-peer.json)
+#        BUILD_DIR    mechsim's build (default build), OUT  the JSON (default $BUILD_DIR/bench-peer.json)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 rounds=${1:-3}
@@ -42,7 +42,7 @@ keys=("$@")
 [ ${#keys[@]} -gt 0 ] || keys=(cam_press nc_slide_loop press_line line_shaft_16)
 build=${BUILD_DIR:-build}
 mechsim=$build/bin/mechsim
-out_json=${OUT:-bench-peer.json}
+out_json=${OUT:-$build/bench-peer.json}
 if [ -n "${PEER_PREFIX:-}" ]; then prefix=$PEER_PREFIX
 elif [ -x /work/peers/bin/cosim_timing ]; then prefix=/work/peers
 else prefix=$HOME/.cache/mechsim-peers; fi
