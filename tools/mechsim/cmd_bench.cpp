@@ -1,11 +1,15 @@
-// `mechsim bench SCENE`: work-precision sweeps (tools/bench/bench.h, docs/accuracy.md), and
-// with --stability the stability bench (tools/bench/stability.h).
+// `mechsim bench SCENE`: work-precision sweeps (tools/bench/bench.h, docs/accuracy.md), with
+// --stability the stability bench (tools/bench/stability.h), with --models-alone the
+// scene's stepping floor and with --peer-system its FMUs and OSP system structure for
+// libcosim (tools/bench/models_alone.h, peer_system.h; tools/bench-peer.sh).
 #include <cstdio>
 #include <iostream>
 #include <sstream>
 
 #include "bench.h"
 #include "commands.h"
+#include "models_alone.h"
+#include "peer_system.h"
 #include "stability.h"
 
 namespace mechsim::tools {
@@ -38,6 +42,8 @@ void add_bench_command(CLI::App& app, int& exit_code) {
   auto rtols = std::make_shared<std::string>();
   auto tolerances = std::make_shared<std::string>();
   auto stability = std::make_shared<bool>(false);
+  auto models_alone = std::make_shared<bool>(false);
+  auto peer_system = std::make_shared<std::string>();
   add_scene_args(cmd, *args);
   cmd->add_option("--json", opt->json_path, "write every run as a JSON row, with orders, DDS checks and provenance");
   cmd->add_option("--plots", opt->plots_dir, "write the PNG work-precision and error-against-step diagrams here");
@@ -62,7 +68,21 @@ void add_bench_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--keep", opt->keep_work_dir, "keep the scratch folder");
   cmd->add_flag("--stability", *stability,
                 "instead: the largest stable macro step per connection and scheme (tools/bench/stability.h)");
+  cmd->add_flag("--models-alone", *models_alone,
+                "instead: one run with the node steppers called in a loop on one thread, no transport (the floor of "
+                "tools/bench-peer.sh): steps/s, CPU per step, max RSS (--json writes them)");
+  cmd->add_option("--peer-system", *peer_system,
+                  "instead: export every participant as an FMI 2 FMU into this folder and write its OspSystemStructure.xml "
+                  "for libcosim (tools/bench-peer.sh)");
   cmd->callback([=, &exit_code] {
+    if (*models_alone) {
+      exit_code = bench::run_models_alone(args->scene, {args->overrides(), opt->json_path}, std::cout);
+      return;
+    }
+    if (!peer_system->empty()) {
+      exit_code = bench::write_peer_system(args->scene, {args->overrides(), *peer_system}, std::cout);
+      return;
+    }
     if (*stability) {
 #ifdef MECHSIM_HAVE_STABILITY_BENCH
       bench::StabilityOptions so;

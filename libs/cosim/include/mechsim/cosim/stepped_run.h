@@ -40,6 +40,13 @@ class SteppedRun {
       torque_output_.push_back(node.block->output_index("coupling_torque"));
     }
     initialised_.assign(steppers_.size(), false);
+    // Who reads whose samples, looked up once: a publish then costs no name comparisons.
+    auto& nodes = plan_->nodes();
+    readers_.resize(nodes.size());
+    for (std::size_t i = 0; i < nodes.size(); ++i)
+      for (std::size_t j = 0; j < nodes.size(); ++j)
+        for (std::size_t e = 0; e < nodes[j].inputs.size(); ++e)
+          if (nodes[j].inputs[e].from == nodes[i].name()) readers_[i].push_back({j, e});
   }
 
   const config::Scene& scene() const { return *scene_; }
@@ -153,9 +160,7 @@ class SteppedRun {
       if (energy_.size() <= k) energy_.resize(k + 1, 0.0);
       energy_[k] = std::max(energy_[k], std::isfinite(t) ? t * t / (2 * stiffness_) : 0.0);
     }
-    for (std::size_t j = 0; j < nodes.size(); ++j)
-      for (std::size_t e = 0; e < nodes[j].inputs.size(); ++e)
-        if (nodes[j].inputs[e].from == nodes[i].name()) steppers_[j]->channel(e).add(k, values_);
+    for (const auto& [j, e] : readers_[i]) steppers_[j]->channel(e).add(k, values_);
   }
 
   std::unique_ptr<config::Scene> scene_;
@@ -163,6 +168,8 @@ class SteppedRun {
   std::vector<std::unique_ptr<NodeStepper>> steppers_;
   std::vector<std::unique_ptr<DivergenceGuard>> guards_;
   std::vector<int> torque_output_;
+  // Per node, the (reader node, its channel) pairs its published samples go to.
+  std::vector<std::vector<std::pair<std::size_t, std::size_t>>> readers_;
   std::vector<bool> initialised_, energy_nodes_;
   std::vector<double> values_, prediction_, energy_;
   double stiffness_ = 0.0;
