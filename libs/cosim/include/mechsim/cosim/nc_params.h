@@ -23,7 +23,7 @@ models::nc::ServoAmplifierParams parse_servo_amplifier_params(const config::Conf
 // own state and the partner's reconstructed angle and speed; torque: the slide side
 // evaluates it and sends the torque; interface_jacobian: both blocks take the torque as an
 // input and solve `levels` torque levels per macro step from each other's predictions
-// (libs/cosim/coupling/interface_jacobian.h).
+// (libs/cosim/include/mechsim/cosim/coupling/interface_jacobian.h).
 struct CouplingSpec {
   std::string scheme = "compliant";
   models::nc::CouplingParams params;
