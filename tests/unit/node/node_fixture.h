@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
+#include <initializer_list>
 #include <memory>
 #include <optional>
 #include <string>
@@ -31,7 +32,8 @@ namespace mechsim::cosim::testing {
 // an hour after the epoch, as a steady clock does after boot (StallResend's "last resend"
 // starts at the epoch).
 struct TestClock {
-  static inline std::chrono::steady_clock::time_point now_ = std::chrono::steady_clock::time_point(std::chrono::hours(1));
+  static inline std::chrono::steady_clock::time_point now_ =
+      std::chrono::steady_clock::time_point(std::chrono::hours(1));
   static std::chrono::steady_clock::time_point now() { return now_; }
   static void advance(double seconds) {
     now_ += std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(seconds));
@@ -44,12 +46,18 @@ struct TestClock {
 class ParticipantWithTwins final : public transport::Participant {
  public:
   explicit ParticipantWithTwins(int domain) : p_(transport::create_participant("inproc", domain)) {}
-  std::unique_ptr<transport::SampleWriter> create_writer(const std::string& t, const transport::TopicType& y) override { return p_->create_writer(t, y); }
-  std::unique_ptr<transport::SampleReader> create_reader(const std::string& t, const transport::TopicType& y) override { return p_->create_reader(t, y); }
-  std::unique_ptr<transport::SampleWriter> create_redundant_writer(const std::string& t, const transport::TopicType& y) override {
+  std::unique_ptr<transport::SampleWriter> create_writer(const std::string& t, const transport::TopicType& y) override {
+    return p_->create_writer(t, y);
+  }
+  std::unique_ptr<transport::SampleReader> create_reader(const std::string& t, const transport::TopicType& y) override {
+    return p_->create_reader(t, y);
+  }
+  std::unique_ptr<transport::SampleWriter> create_redundant_writer(const std::string& t,
+                                                                   const transport::TopicType& y) override {
     return p_->create_writer(transport::redundant_topic(t), y);
   }
-  std::unique_ptr<transport::SampleReader> create_redundant_reader(const std::string& t, const transport::TopicType& y) override {
+  std::unique_ptr<transport::SampleReader> create_redundant_reader(const std::string& t,
+                                                                   const transport::TopicType& y) override {
     return p_->create_reader(transport::redundant_topic(t), y);
   }
   std::unique_ptr<transport::ControlWriter> create_control_writer() override { return p_->create_control_writer(); }
@@ -65,8 +73,8 @@ class ParticipantWithTwins final : public transport::Participant {
 };
 
 struct NodeOptions {
-  bool redundant = false;                            // faults.redundant_samples
-  std::optional<std::uint64_t> lose_write_of_step;   // RollbackSession's test seam
+  bool redundant = false;                           // faults.redundant_samples
+  std::optional<std::uint64_t> lose_write_of_step;  // RollbackSession's test seam
 };
 
 // Every test its own domain, so that no endpoint of another test is ever matched.
@@ -122,6 +130,22 @@ std::optional<NodeFailure> failure_of(F&& f) {
     return e;
   }
   return std::nullopt;
+}
+
+// Success when `f` throws a NodeFailure of `kind` whose message holds every one of `phrases`.
+template <class F>
+::testing::AssertionResult fails_with(F&& f, transport::NodeError kind,
+                                      std::initializer_list<std::string> phrases = {}) {
+  const std::optional<NodeFailure> e = failure_of(f);
+  if (!e) return ::testing::AssertionFailure() << "no NodeFailure thrown";
+  if (e->kind() != kind)
+    return ::testing::AssertionFailure() << "NodeFailure of kind " << static_cast<int>(e->kind()) << ", not "
+                                         << static_cast<int>(kind) << ": " << e->what();
+  const std::string what = e->what();
+  for (const std::string& phrase : phrases)
+    if (what.find(phrase) == std::string::npos)
+      return ::testing::AssertionFailure() << "no '" << phrase << "' in: " << what;
+  return ::testing::AssertionSuccess();
 }
 
 }  // namespace mechsim::cosim::testing

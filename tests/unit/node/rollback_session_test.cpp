@@ -24,7 +24,9 @@ struct Partner {
   std::unique_ptr<transport::SampleReader> reader;
 };
 
-std::vector<double> own_sample(const FollowerNode& f, double x) { return std::vector<double>(f.node.type->publishes->fields.size(), x); }
+std::vector<double> own_sample(const FollowerNode& f, double x) {
+  return std::vector<double>(f.node.type->publishes->fields.size(), x);
+}
 
 constexpr double kStall = std::chrono::duration<double>(StallResend::kResendAfterStall).count();  // 0.1 s
 
