@@ -20,16 +20,16 @@ std::string describe_partner(const config::Scene& scene, const std::string& part
 
 }  // namespace
 
-PartitionWatch::PartitionWatch(const ScenePlan& plan, const PlannedNode& node, double partition_grace)
-    : plan_(plan), node_(node), grace_(partition_grace) {}
+PartitionWatch::PartitionWatch(const ScenePlan& plan, const PlannedNode& node, double partition_grace, SteadyNow now)
+    : plan_(plan), node_(node), grace_(partition_grace), now_(now), waiting_since_(now()) {}
 
 void PartitionWatch::check(NodeStepper& stepper, bool initialised, bool lenient) {
   if (stepper.step() != waiting_step_ || !initialised || lenient) {
     waiting_step_ = initialised ? stepper.step() : UINT64_MAX;
-    waiting_since_ = std::chrono::steady_clock::now();
+    waiting_since_ = now_();
     return;
   }
-  const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - waiting_since_).count();
+  const double waited = std::chrono::duration<double>(now_() - waiting_since_).count();
   if (waited <= grace_) return;
   const config::Scene& scene = plan_.scene();
   std::string missing;

@@ -8,14 +8,16 @@
 
 #include "mechsim/cosim/node_stepper.h"
 #include "mechsim/cosim/scene_plan.h"
+#include "steady_now.h"
 
 namespace mechsim::cosim {
 
 class PartitionWatch {
  public:
-  PartitionWatch(const ScenePlan& plan, const PlannedNode& node, double partition_grace);
+  // now: the clock of the wait (steady_now.h; a unit test steps its own).
+  PartitionWatch(const ScenePlan& plan, const PlannedNode& node, double partition_grace, SteadyNow now = steady_now);
   // The wait so far does not count (a hold for a second writer is no partition).
-  void excuse() { waiting_since_ = std::chrono::steady_clock::now(); }
+  void excuse() { waiting_since_ = now_(); }
   // Called while the node waits: throws NodeFailure (partner unreachable) once the node has
   // waited longer than the grace at one step. lenient: right after a rollback's resume.
   void check(NodeStepper& stepper, bool initialised, bool lenient);
@@ -24,7 +26,8 @@ class PartitionWatch {
   const ScenePlan& plan_;
   const PlannedNode& node_;
   double grace_;
-  std::chrono::steady_clock::time_point waiting_since_ = std::chrono::steady_clock::now();
+  SteadyNow now_;
+  std::chrono::steady_clock::time_point waiting_since_;
   std::uint64_t waiting_step_ = UINT64_MAX;
 };
 

@@ -6,7 +6,7 @@
 namespace mechsim::cosim {
 
 bool RollbackSession::within_after_resume(double seconds) const {
-  return resumed_at_ && Clock::now() - *resumed_at_ < std::chrono::duration<double>(seconds);
+  return resumed_at_ && now_() - *resumed_at_ < std::chrono::duration<double>(seconds);
 }
 
 void RollbackSession::keep(bool prediction, const transport::SampleHeader& h, const std::vector<double>& v) {
@@ -25,7 +25,7 @@ void RollbackSession::write_prediction(const transport::SampleHeader& h, const s
 }
 
 void RollbackSession::go_on(const transport::SampleHeader& h, const std::vector<double>& v) {
-  resumed_at_ = Clock::now();
+  resumed_at_ = now_();
   resend_.clear();
   resend_.step_taken();
   lose_next_prediction_ = lose_first_writes_ && io_.has_cut();

@@ -31,9 +31,11 @@ class RollbackSession {
   // beside its new one (it took more than 4 s under load once).
   static constexpr double kLingeringAfterResume = 10.0;  // s
 
-  // lose_first_writes, lose_write_of_step: the test seams of NodeRunOptions.
-  RollbackSession(NodeEndpoints& io, bool lose_first_writes, std::optional<std::uint64_t> lose_write_of_step = std::nullopt)
-      : io_(io), lose_first_writes_(lose_first_writes), lose_write_of_step_(lose_write_of_step), resend_(io) {}
+  // lose_first_writes, lose_write_of_step: the test seams of NodeRunOptions; now: the
+  // clock of the windows and of the resend (steady_now.h; a unit test steps its own).
+  RollbackSession(NodeEndpoints& io, bool lose_first_writes, std::optional<std::uint64_t> lose_write_of_step = std::nullopt,
+                  SteadyNow now = steady_now)
+      : io_(io), lose_first_writes_(lose_first_writes), lose_write_of_step_(lose_write_of_step), now_(now), resend_(io, now) {}
 
   // Within `seconds` of the last resume (false when never rolled back).
   bool within_after_resume(double seconds) const;
@@ -60,6 +62,7 @@ class RollbackSession {
   NodeEndpoints& io_;
   const bool lose_first_writes_;
   std::optional<std::uint64_t> lose_write_of_step_;
+  SteadyNow now_;
   bool lose_next_prediction_ = false;
   std::optional<Clock::time_point> resumed_at_;
   std::optional<std::uint64_t> rollback_step_;

@@ -9,10 +9,8 @@
 
 namespace mechsim::cosim {
 
-using Clock = std::chrono::steady_clock;
-
 SampleGate::SampleGate(const ScenePlan& plan, const PlannedNode& node, NodeEndpoints& io, NodeStepper& stepper,
-                       const RollbackSession& rollback, std::uint64_t run_id, int domain, bool resumed)
+                       const RollbackSession& rollback, std::uint64_t run_id, int domain, bool resumed, SteadyNow now)
     : plan_(plan),
       node_(node),
       io_(io),
@@ -20,6 +18,7 @@ SampleGate::SampleGate(const ScenePlan& plan, const PlannedNode& node, NodeEndpo
       rollback_(rollback),
       run_id_(run_id),
       domain_(domain),
+      now_(now),
       next_step_(io.inputs(), 0),
       next_step_known_(io.inputs(), !resumed),
       checked_fields_(node.inputs.size()) {
@@ -66,8 +65,8 @@ bool SampleGate::hold_for_second_writer() {
     second_writer_since_.reset();
     return false;
   }
-  if (!second_writer_since_) second_writer_since_ = Clock::now();
-  if (std::chrono::duration<double>(Clock::now() - *second_writer_since_).count() > RollbackSession::kForeignWriterGrace &&
+  if (!second_writer_since_) second_writer_since_ = now_();
+  if (std::chrono::duration<double>(now_() - *second_writer_since_).count() > RollbackSession::kForeignWriterGrace &&
       !rollback_.within_after_resume(RollbackSession::kLingeringAfterResume))
     foreign(w->reader, w->topic, w->from,
             "more than one writer for " + std::to_string(static_cast<int>(RollbackSession::kForeignWriterGrace)) + " s");

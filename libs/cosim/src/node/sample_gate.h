@@ -16,14 +16,16 @@
 #include "mechsim/cosim/scene_plan.h"
 #include "node_endpoints.h"
 #include "rollback_session.h"
+#include "steady_now.h"
 
 namespace mechsim::cosim {
 
 class SampleGate {
  public:
-  // resumed: a node restarted from a checkpoint takes up each stream wherever it is.
+  // resumed: a node restarted from a checkpoint takes up each stream wherever it is. now:
+  // the clock of the second-writer grace (steady_now.h; a unit test steps its own).
   SampleGate(const ScenePlan& plan, const PlannedNode& node, NodeEndpoints& io, NodeStepper& stepper,
-             const RollbackSession& rollback, std::uint64_t run_id, int domain, bool resumed);
+             const RollbackSession& rollback, std::uint64_t run_id, int domain, bool resumed, SteadyNow now = steady_now);
 
   // Takes every waiting sample, checks it and hands it to the stepper. Throws NodeFailure
   // (foreign data, implausible input).
@@ -49,6 +51,7 @@ class SampleGate {
   const RollbackSession& rollback_;
   std::uint64_t run_id_;
   int domain_;
+  SteadyNow now_;
   std::vector<std::uint64_t> next_step_;
   std::vector<bool> next_step_known_;
   std::vector<std::vector<int>> checked_fields_;  // per input edge: the fields its publisher computes

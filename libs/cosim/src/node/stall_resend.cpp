@@ -22,7 +22,7 @@ void StallResend::keep(bool prediction, const transport::SampleHeader& h, const 
 
 void StallResend::resend_if_stalled(std::uint64_t step, const char* why) {
   if (sent_.empty()) return;
-  const auto now = Clock::now();
+  const auto now = now_();
   if (now - last_step_taken_ < kResendAfterStall || now - last_resend_ < kResendAfterStall) return;
   if (last_resend_ < last_step_taken_)  // once per stall in the log
     std::printf("%s: no step for %.2f s at step %llu: the newest %zu sample(s) sent again\n", why,

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "node_endpoints.h"
+#include "steady_now.h"
 
 namespace mechsim::cosim {
 
@@ -22,14 +23,15 @@ class StallResend {
   static constexpr std::size_t kKeptSteady = 4;
   static constexpr auto kResendAfterStall = std::chrono::milliseconds(100);
 
-  explicit StallResend(NodeEndpoints& io) : io_(io) {}
+  // now: the clock (steady_now.h; a unit test steps its own).
+  explicit StallResend(NodeEndpoints& io, SteadyNow now = steady_now) : io_(io), now_(now), last_step_taken_(now()) {}
 
   // A write of the node (prediction: the cut topic, else its own topic), kept for sending
   // again; at most `kept` of the newest are kept.
   void keep(bool prediction, const transport::SampleHeader& h, const std::vector<double>& v, std::size_t kept);
   // Forgets what was kept (a rollback: the run goes on from an earlier step).
   void clear() { sent_.clear(); }
-  void step_taken() { last_step_taken_ = Clock::now(); }
+  void step_taken() { last_step_taken_ = now_(); }
   // Writes the kept samples again when no step was taken for kResendAfterStall (then again
   // every kResendAfterStall); `why` goes into the log line, printed once per stall.
   void resend_if_stalled(std::uint64_t step, const char* why);
@@ -42,8 +44,9 @@ class StallResend {
     std::vector<double> values;
   };
   NodeEndpoints& io_;
+  SteadyNow now_;
   std::vector<SentSample> sent_;
-  Clock::time_point last_step_taken_ = Clock::now(), last_resend_{};
+  Clock::time_point last_step_taken_, last_resend_{};
 };
 
 }  // namespace mechsim::cosim

@@ -11,7 +11,7 @@ namespace mechsim::transport::cyclone {
 
 // One DDS domain participant with one waitset on which all its readers and a guard
 // condition (for wake()) are attached. The domain's network configuration comes from
-// CYCLONEDDS_URI, which the launcher sets (loopback only; config/dds/cyclonedds.xml).
+// CYCLONEDDS_URI, which the launcher sets (loopback only; config/dds/cyclonedds-loopback.xml).
 class CycloneParticipant final : public Participant {
  public:
   CycloneParticipant(int domain_id, const std::optional<SecurityIdentity>& security);

@@ -1,7 +1,7 @@
-// The CVT block with its drive (libs/models/.../cvt/cvt_block.h): the power balance that its
-// equations must close at any state (also while the ratio moves), the ratio actuator, a
-// steady operating point against the stationary model, and the flagged state outside the
-// model.
+// The CVT block with its drive (libs/models/include/mechsim/models/cvt/cvt_block.h): the
+// power balance that its equations must close at any state (also while the ratio moves),
+// the ratio actuator, a steady operating point against the stationary model, and the
+// flagged state outside the model.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -18,7 +18,7 @@ namespace mechsim::config {
 const char* default_dds_vendor();
 
 // `time: {step: adaptive, tolerance, min, max, initial}`: the macro step follows the coupling
-// error (docs/accuracy.md, "Adaptive macro step"; libs/cosim/step_control.h).
+// error (docs/accuracy.md, "Adaptive macro step"; libs/cosim/include/mechsim/cosim/step_control.h).
 struct AdaptiveStepSpec {
   double tolerance = 1e-3;  // per-step coupling error, relative to each input field's scale
   double min = 0.0;         // s

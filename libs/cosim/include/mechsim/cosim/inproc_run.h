@@ -3,7 +3,7 @@
 // driven the way `mechsim launch` drives processes: wait until every node is ready, send
 // start on mechsim/control, watch mechsim/status until every node is done, abort all on
 // the first failure. Results do not depend on timing, so a run gives the same numbers as
-// over DDS (tests/integration/inproc_test.cpp checks bit-identical node logs).
+// over DDS (tests/integration/dds_vendor_test.cpp, VendorRuns.*InProcess: bit-identical node logs).
 //
 // Each node gets its own ScenePlan (its own blocks), built here on the calling thread, as
 // each node process builds its own; run_node keeps no global state.

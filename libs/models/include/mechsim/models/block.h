@@ -102,9 +102,9 @@ class Block {
   // --- discontinuities known before the run -------------------------------------------
   // Instants in (t0, t_end) at which the block's own schedule makes its outputs or its
   // right-hand side jump or kink (a setpoint step or ramp corner, a ratio-schedule point),
-  // whatever its inputs do. The run's step grid lands a macro-step boundary on each
-  // (libs/cosim/step_grid.h), so that no exchange interval straddles one and the sample at
-  // the instant is the value after it (the schedules are right-continuous). Default: none.
+  // whatever its inputs do. The run's step grid (libs/cosim/include/mechsim/cosim/step_grid.h)
+  // lands a macro-step boundary on each, so that no exchange interval straddles one and the
+  // sample at the instant is the value after it (the schedules are right-continuous). Default: none.
   virtual std::vector<double> scheduled_events(double /*t0*/, double /*t_end*/) const { return {}; }
   // The same in cam angle: angles [rad, in [0, 2 pi)] of the block's input `angle` at which
   // its law jumps (a functional load's ends). Where that input comes from a shaft turning
