@@ -23,7 +23,10 @@ namespace {
 namespace fs = std::filesystem;
 
 // nc_slide_loop for 60 s of simulated time on a domain of its own, as an outsider would find
-// it running; the launcher's loopback configuration for this process too.
+// it running; the launcher's loopback configuration for this process too. A process per
+// participant: in one process (the default) the members read each other's topics from
+// memory, where a forged DDS sample never arrives, and so is not seen either
+// (docs/faults.md, "Foreign writers").
 struct RunningScene {
   transport::DomainLock domain = transport::DomainLock::acquire();
   fs::path dir;
@@ -35,7 +38,7 @@ struct RunningScene {
     ::setenv("FASTRTPS_DEFAULT_PROFILES_FILE", MECHSIM_SOURCE_DIR "/config/dds/fastdds-shm.xml", 1);
     launcher = spawn({std::string(MECHSIM_BIN_DIR) + "/mechsim", "launch", MECHSIM_SOURCE_DIR "/config/scenes/nc_slide_loop.yaml", "--end",
                       "60 s", "--no-plot", "--no-progress", "--runs-dir", (dir / "runs").string(), "--dds", vendor, "--set",
-                      "dds.domain=" + std::to_string(domain.domain_id())},
+                      "dds.domain=" + std::to_string(domain.domain_id()), "--set", "processes=per_participant"},
                      log());
   }
   ~RunningScene() {

@@ -259,8 +259,11 @@ TEST(Cli, CheckNamesEachParticipantsProcessGroup) {
   EXPECT_EQ(c.exit_code, 0) << c.output;
   EXPECT_NE(c.output.find("in process group axis\n"), std::string::npos) << c.output;
   EXPECT_NE(c.output.find("in process group auto_cyclone_1 (processes: 1 per vendor)"), std::string::npos) << c.output;
-  CommandResult apart = run({kMechsim, "check", scene_path("nc_slide_loop.yaml")}, log, 30);
-  EXPECT_EQ(apart.output.find("process group"), std::string::npos) << "a process per participant by default";
+  // The default (processes: auto) on one host: one process for the vendor's participants.
+  CommandResult automatic = run({kMechsim, "check", scene_path("nc_slide_loop.yaml")}, log, 30);
+  EXPECT_NE(automatic.output.find("in process group auto_cyclone_1 (processes: auto)"), std::string::npos) << automatic.output;
+  CommandResult apart = run({kMechsim, "check", scene_path("nc_slide_loop.yaml"), "--set", "processes=per_participant"}, log, 30);
+  EXPECT_EQ(apart.output.find("process group"), std::string::npos) << "a process per participant, as asked";
   fs::remove(log);
 }
 

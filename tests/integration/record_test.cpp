@@ -355,8 +355,10 @@ TEST_F(Record, KilledRecorderLeavesATruncatedFileThatRecoverRebuilds) {
 }
 
 TEST_F(Record, TopicCommandsShowARunningScene) {
-  // A long run, interrupted once the commands have seen it.
-  const pid_t launcher = spawn(launch_args("t", {"--end", "600 s"}), path("t.launch.log"));
+  // A long run, interrupted once the commands have seen it. A process per node: `topic
+  // list` counts DDS readers, and a member of a process group reads its partner's topic
+  // from memory, not through DDS (docs/recording.md).
+  const pid_t launcher = spawn(launch_args("t", {"--end", "600 s", "--set", "processes=per_participant"}), path("t.launch.log"));
   std::string list;
   for (int i = 0; i < 30 && list.find("follower/state") == std::string::npos; ++i)
     list = run({kMechsim, "topic", "list", "--domain", domain(), "--wait", "0.5"}, path("list.log"), 30).output;

@@ -82,5 +82,32 @@ TEST(LocalHandoff, AWriterThatGoesAwayIsNoLongerMatched) {
   EXPECT_FALSE(twin->take(h, got));
 }
 
+// Nobody outside the process reads the topic: the sample is handed over and not published;
+// a reader that joins later gets the samples from at most 16 writes on (as a late joiner of
+// a VOLATILE topic gets the samples from its match on).
+TEST(LocalHandoff, ASampleNobodyOutsideReadsIsNotPublishedUntilAReaderJoins) {
+  LocalHandoff handoff({"follower/state"});
+  auto a = handoff.member(create_participant("inproc", kDomain + 3));
+  auto b = handoff.member(create_participant("inproc", kDomain + 3));
+  auto outside = create_participant("inproc", kDomain + 3);
+  const TopicType& type = follower_state();
+  auto writer = a->create_writer("follower/state", type);
+  auto local = b->create_reader("follower/state", type);
+  const std::vector<double> values(type.fields.size(), 1.0);
+  writer->write({1, 0, 0.0}, values);
+  auto late = outside->create_reader("follower/state", type);
+  for (std::uint64_t step = 1; step <= 16; ++step) writer->write({1, step, 0.001 * step}, values);
+  SampleHeader h;
+  std::vector<double> got;
+  std::vector<std::uint64_t> published;
+  while (late->take(h, got)) published.push_back(h.step);
+  ASSERT_FALSE(published.empty());
+  EXPECT_GT(published.front(), 0u);        // step 0 went to nobody outside
+  EXPECT_EQ(published.back(), 16u);        // from the recheck on, every write
+  int handed_over = 0;
+  while (local->take(h, got)) ++handed_over;
+  EXPECT_EQ(handed_over, 17);              // the co-located reader got every one
+}
+
 }  // namespace
 }  // namespace mechsim::transport

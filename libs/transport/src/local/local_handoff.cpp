@@ -1,6 +1,7 @@
 #include "mechsim/transport/local_handoff.h"
 
 #include <algorithm>
+#include <chrono>
 #include <deque>
 #include <map>
 #include <utility>
@@ -34,7 +35,11 @@ int count_same(const std::vector<std::pair<const void*, const TopicType*>>& writ
   return static_cast<int>(std::count_if(writers.begin(), writers.end(), [&](const auto& w) { return w.second->same_as(type); }));
 }
 
-// Publishes on DDS as before and hands each sample to the local readers of its topic.
+// Hands each sample to the local readers of its topic and publishes it on DDS while anyone
+// outside reads it (a tool, a recorder, a member of another process or host). Every reader
+// of a run matched before its start (the launcher's barriers), so nobody who counts misses a
+// sample; a reader that matches later (`topic echo`, a restarted partner) is seen within
+// kRecheckWrites writes or kRecheckPeriod, as a late joiner of a VOLATILE topic expects.
 class HandoffWriter final : public SampleWriter {
  public:
   HandoffWriter(Bus::Topic& topic, const TopicType& type, std::unique_ptr<SampleWriter> dds)
@@ -45,7 +50,7 @@ class HandoffWriter final : public SampleWriter {
     std::erase_if(topic_.writers, [this](const auto& w) { return w.first == this; });
   }
   void write(const SampleHeader& header, std::span<const double> values) override {
-    dds_->write(header, values);
+    if (read_outside()) dds_->write(header, values);
     for (Queue* q : topic_.readers)
       if (q->type->same_as(type_)) {
         auto& sample = q->samples.emplace_back(header, std::vector<double>(values.begin(), values.end()));
@@ -57,6 +62,17 @@ class HandoffWriter final : public SampleWriter {
   void flush(std::chrono::nanoseconds timeout) override { dds_->flush(timeout); }
 
  private:
+  static constexpr int kRecheckWrites = 16;
+  static constexpr std::chrono::milliseconds kRecheckPeriod{5};
+  bool read_outside() {
+    const auto now = std::chrono::steady_clock::now();
+    if (--writes_to_recheck_ <= 0 || now - checked_at_ > kRecheckPeriod) {
+      read_outside_ = dds_->matched_readers_including_tools() > 0;
+      writes_to_recheck_ = kRecheckWrites;
+      checked_at_ = now;
+    }
+    return read_outside_;
+  }
   int local_readers() const {
     return static_cast<int>(std::count_if(topic_.readers.begin(), topic_.readers.end(),
                                           [&](const Queue* q) { return q->type->same_as(type_); }));
@@ -64,6 +80,9 @@ class HandoffWriter final : public SampleWriter {
   Bus::Topic& topic_;
   const TopicType& type_;
   std::unique_ptr<SampleWriter> dds_;
+  bool read_outside_ = true;
+  int writes_to_recheck_ = 0;
+  std::chrono::steady_clock::time_point checked_at_{};
 };
 
 class HandoffReader final : public SampleReader {

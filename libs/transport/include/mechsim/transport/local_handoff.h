@@ -2,9 +2,10 @@
 // process group's executor, docs/node-loop.md "One executor per process"). Each member keeps
 // its own participant for everything else; a topic that a member of the same executor
 // writes is read from memory instead of from DDS: no serialization, no DDS wake-up, no
-// thread hand-off. The writer still publishes it on DDS, for tools, recordings and readers
-// in other processes or on other hosts, so the outside sees what it sees without the
-// hand-off, and the values are the ones a DDS round trip gives (as_on_the_wire).
+// thread hand-off. The writer still publishes it on DDS while anyone outside reads it
+// (tools, recordings, readers in other processes or on other hosts), so the outside sees
+// what it sees without the hand-off, and the values are the ones a DDS round trip gives
+// (as_on_the_wire).
 //
 // Not thread-safe, on purpose: every member's data endpoints are created and used on the
 // executor's one thread. Control and status pass through to the member's own participant.
