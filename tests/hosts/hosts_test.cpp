@@ -31,10 +31,11 @@ TEST_P(AcrossHosts, NodeOutputsAreByteIdenticalToTheSingleHostRun) {
     GTEST_SKIP() << "layout '" << layout << "' needs a DDS vendor this build left out";
   start_agents(static_cast<int>(c.participants.size()));
 
-  // The single-host run, on this machine's loopback (a domain of its own).
+  // The single-host run, on this machine's loopback (a domain of its own), with a process per
+  // participant as across hosts, so that both run folders hold the same files.
   const fs::path single = dir_ / "single";
   const CommandResult one = run({kMechsim, "launch", kScenes + c.scene, "--runs-dir", single.string(), "--no-plot", "--no-progress",
-                                 "--dds", layout},
+                                 "--dds", layout, "--set", "processes=per_participant"},
                                 single.string() + ".log", 240);
   ASSERT_EQ(one.exit_code, 0) << one.output;
 
