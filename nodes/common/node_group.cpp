@@ -20,7 +20,7 @@ int node_group_main(int argc, char** argv) {
   // Never outlive the launcher (it may be killed without a chance to stop us).
   prctl(PR_SET_PDEATHSIG, SIGTERM);
 
-  CLI::App app{"mechsim process group: several participants of a scene as threads of one process, each with its own "
+  CLI::App app{"mechsim process group: several participants of a scene stepped by one thread of one process, each with its own "
                "endpoints (Fast DDS members share one DomainParticipant; participants.<p>.process, docs/scenes.md). "
                "Normally started by `mechsim launch`."};
   cosim::NodeCommandLine command_line;

@@ -11,7 +11,7 @@ int node_main(const char* node_type, int argc, char** argv);
 
 // The process of a process group (`participants.<p>.process`, docs/scenes.md):
 //   node_group --scene RUN_DIR/scene.yaml --node A --node B ... --run-id ID --domain D
-// runs each node as a thread, each its own DDS participant. The exit code is the first
+// steps its nodes on one executor thread, each its own DDS participant. The exit code is the first
 // failing node's, else 0.
 int node_group_main(int argc, char** argv);
 

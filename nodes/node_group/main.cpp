@@ -1,4 +1,4 @@
-// Process `node_group`: several participants of a scene as threads of one process; see
+// Process `node_group`: several participants of a scene stepped by one thread of one process; see
 // nodes/common/node_main.h.
 #include "node_main.h"
 

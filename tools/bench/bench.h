@@ -3,7 +3,7 @@
 // Sweeps the macro step H, the coupling scheme of the scene's connections (the schemes the
 // scene grammar accepts and the scene's connections can take), the node solver and its
 // tolerance, runs each point over the in-process transport (cosim::run_inproc: the node
-// code as threads of this process) and a few spot checks over DDS (`mechsim launch`
+// code on one executor thread of this process) and a few spot checks over DDS (`mechsim launch`
 // processes), and measures each run against the monolithic reference at the same H
 // (assess::compare_signal on the scene's `compare:` outputs). An error that is not larger
 // than the reference's own error estimate (cosim::estimate_reference_error: a re-run at a

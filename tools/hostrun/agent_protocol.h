@@ -44,7 +44,7 @@ enum class AgentKind : std::int32_t {
 
 inline constexpr const char* kAllAgents = "*";
 // The `type` of a start request for a process group, and the executable that runs a group's
-// nodes as threads (nodes/common/node_group.cpp), on any host.
+// nodes on one executor thread (nodes/common/node_group.cpp), on any host.
 inline constexpr const char* kGroupType = "node_group";
 inline constexpr double kHeartbeatPeriodS = 0.5;
 inline constexpr double kDefaultHeartbeatTimeoutS = 5.0;

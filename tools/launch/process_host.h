@@ -1,5 +1,5 @@
 // Node processes on this machine (cosim/node_host.h): one process per node, or several
-// nodes as threads of one process (`participants.<p>.process: <group>`, docs/scenes.md).
+// nodes in one process (`participants.<p>.process: <group>`, docs/scenes.md).
 // A process that stops stops every node in it; a restart (docs/faults.md) starts the whole
 // process again, every member resuming from the checkpoint.
 #pragma once

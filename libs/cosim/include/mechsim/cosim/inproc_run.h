@@ -1,4 +1,4 @@
-// One run of a scene with every node as a thread of this process, over the in-process
+// One run of a scene with every node stepped by one executor thread of this process, over the in-process
 // transport ("inproc" backend): the same node code (run_node) as the node processes,
 // driven the way `mechsim launch` drives processes: wait until every node is ready, send
 // start on mechsim/control, watch mechsim/status until every node is done, abort all on
