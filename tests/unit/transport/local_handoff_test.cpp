@@ -25,8 +25,10 @@ TEST(LocalHandoff, ACoLocatedReaderGetsTheSampleFromMemoryAsTheWireWouldCarryIt)
   auto local = reader_side->create_reader("follower/state", type);
   auto remote = outside->create_reader("follower/state", type);
 
-  // Both readers count; the co-located one is not on the member's own participant.
+  // Both readers count; the co-located one is not on the member's own participant, and so
+  // no reader on the domain (the launcher's barrier compares with the domain's readers).
   EXPECT_EQ(writer->matched_readers(), 2);
+  EXPECT_EQ(writer->matched_readers_on_the_wire(), 1);
   EXPECT_EQ(local->matched_writers(), 1);
 
   std::vector<double> values(type.fields.size(), 0.25);

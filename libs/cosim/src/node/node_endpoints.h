@@ -25,9 +25,10 @@ class NodeEndpoints {
   // Matched both ways with every partner (docs/protocol.md: a match seen by only one side
   // can lose the first sample); a recorded node also with the recorder.
   bool matched() const;
-  // Readers matched with the data writer, tools' included (the launcher starts the run once
-  // every reader on the domain, a recorder of the user's included, is matched).
-  int readers_matched_including_tools() const { return writer_->matched_readers_including_tools(); }
+  // Readers matched with the data writer over DDS, tools' included (the launcher starts the
+  // run once every reader on the domain, a recorder of the user's included, is matched; a
+  // co-located member reading from memory is no reader on the domain).
+  int readers_matched_including_tools() const { return writer_->matched_readers_on_the_wire(); }
 
   // Every write of the node's own sample and of its cut prediction, each with its twin.
   void write_own(const transport::SampleHeader& h, const std::vector<double>& v);

@@ -59,6 +59,7 @@ class HandoffWriter final : public SampleWriter {
   }
   int matched_readers() const override { return dds_->matched_readers() + local_readers(); }
   int matched_readers_including_tools() const override { return dds_->matched_readers_including_tools() + local_readers(); }
+  int matched_readers_on_the_wire() const override { return dds_->matched_readers_on_the_wire(); }
   void flush(std::chrono::nanoseconds timeout) override { dds_->flush(timeout); }
 
  private:

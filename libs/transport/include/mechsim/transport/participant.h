@@ -33,6 +33,10 @@ class SampleWriter {
   // Every matched reader, tools' readers included (the launcher's recorder must have
   // matched before a recorded run starts).
   virtual int matched_readers_including_tools() const { return matched_readers(); }
+  // The readers matched over the transport itself, tools' included: what a discovery of the
+  // domain counts (the launcher's readers barrier). Not a reader of the same process that
+  // takes the samples from memory (local_handoff.h), which the two counts above include.
+  virtual int matched_readers_on_the_wire() const { return matched_readers_including_tools(); }
   // Waits until every matched reader acknowledged what was written (before a node exits).
   virtual void flush(std::chrono::nanoseconds timeout) = 0;
 };
