@@ -77,9 +77,13 @@ void ThreadNodeHost::execute() {
   for (auto& slot : slots_)
     runs.push_back(std::make_unique<NodeRun>(*slot->parts.plan, slot->name, *slot->parts.participant, slot->options));
   std::size_t turn = 0;  // which of several outside-waiting nodes is waited on next
+  std::vector<std::size_t> live, outside;  // of this pass; kept, so that a pass allocates nothing
+  live.reserve(slots_.size());
+  outside.reserve(slots_.size());
   for (;;) {
     bool progressed = false;
-    std::vector<std::size_t> live, outside;
+    live.clear();
+    outside.clear();
     for (std::size_t i = 0; i < slots_.size(); ++i) {
       Slot& slot = *slots_[i];
       if (slot.exit_code >= 0) continue;

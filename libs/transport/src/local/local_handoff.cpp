@@ -14,6 +14,9 @@ namespace {
 struct Queue {
   const TopicType* type;
   std::deque<std::pair<SampleHeader, std::vector<double>>> samples;
+  // Value buffers of taken samples, reused by the next writes: a step hands a sample over
+  // without allocating (the queue holds a step or two).
+  std::vector<std::vector<double>> spare;
 };
 
 }  // namespace
@@ -53,8 +56,14 @@ class HandoffWriter final : public SampleWriter {
     if (read_outside()) dds_->write(header, values);
     for (Queue* q : topic_.readers)
       if (q->type->same_as(type_)) {
-        auto& sample = q->samples.emplace_back(header, std::vector<double>(values.begin(), values.end()));
-        as_on_the_wire(type_, sample.second);
+        std::vector<double> buffer;
+        if (!q->spare.empty()) {
+          buffer = std::move(q->spare.back());
+          q->spare.pop_back();
+        }
+        buffer.assign(values.begin(), values.end());
+        as_on_the_wire(type_, buffer);
+        q->samples.emplace_back(header, std::move(buffer));
       }
   }
   int matched_readers() const override { return dds_->matched_readers() + local_readers(); }
@@ -97,6 +106,7 @@ class HandoffReader final : public SampleReader {
     if (queue_.samples.empty()) return false;
     header = queue_.samples.front().first;
     values.swap(queue_.samples.front().second);
+    queue_.spare.push_back(std::move(queue_.samples.front().second));  // the caller's old buffer
     queue_.samples.pop_front();
     return true;
   }
