@@ -94,10 +94,12 @@ void Bench::print_findings(const json& orders, const json& ten_x) {
     out_ << "DDS spot check " << d["scheme"].get<std::string>() << " H " << time_text(d["step_s"].get<double>()) << ": "
          << d.value("status", "?") << ", outputs " << (d.value("outputs_identical", false) ? "bit-identical to" : "DIFFERENT from")
          << " the in-process run, wall " << num(d.value("wall_time_s", kNaN)) << " s (in process "
-         << (d["inproc_wall_time_s"].is_number() ? num(d["inproc_wall_time_s"].get<double>()) : "-") << " s)\n";
+         << (d.contains("inproc_wall_time_s") && d["inproc_wall_time_s"].is_number() ? num(d["inproc_wall_time_s"].get<double>()) : "-") << " s)\n";
+  // ten_x and d are const: operator[] on a key they lack is undefined behaviour (it crashed
+  // now and then after a bench without a best pair), so optional keys are tested first.
   out_ << "best scheme vs zero-order-hold Jacobi: "
        << (ten_x["factor"].is_number() ? num(ten_x["factor"].get<double>(), "%.3g") + "x" : ten_x.value("note", ""))
-       << (ten_x["at"].is_object() ? " (" + ten_x["at"]["scheme"].get<std::string>() + " " + ten_x["at"]["solver"].get<std::string>() + " H " +
+       << (ten_x.contains("at") && ten_x["at"].is_object() ? " (" + ten_x["at"]["scheme"].get<std::string>() + " " + ten_x["at"]["solver"].get<std::string>() + " H " +
                                          time_text(ten_x["at"]["step_s"].get<double>()) + ")"
                                    : "")
        << "\n";
@@ -127,8 +129,8 @@ void Bench::print_adaptive_vs_fixed(const json& adaptive_vs_fixed) {
         std::string t = x["adaptive_error"].is_number() ? num(x["adaptive_error"].get<double>()) : "-";
         if (x["fixed_error"].is_number()) t += " (fixed " + num(x["fixed_error"].get<double>()) + ")";
         else if (x["fixed_error"].is_string()) t += " (fixed: outside)";
-        if (x["factor"].is_number()) t += " x" + num(x["factor"].get<double>(), "%.3g");
-        if (x["factor_at_equal_steps"].is_number()) t += " [equal steps x" + num(x["factor_at_equal_steps"].get<double>(), "%.3g") + "]";
+        if (x.contains("factor") && x["factor"].is_number()) t += " x" + num(x["factor"].get<double>(), "%.3g");
+        if (x.contains("factor_at_equal_steps") && x["factor_at_equal_steps"].is_number()) t += " [equal steps x" + num(x["factor_at_equal_steps"].get<double>(), "%.3g") + "]";
         return t;
       };
       out_ << "  tol " << tol_text(p["tolerance"].get<double>()) << ": " << p["status"].get<std::string>() << ", "
