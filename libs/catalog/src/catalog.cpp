@@ -1,4 +1,4 @@
-#include "mechsim/cosim/catalog.h"
+#include "mechsim/catalog/catalog.h"
 
 namespace mechsim::cosim {
 
