@@ -16,7 +16,10 @@
 
 #include "cdr_decoder.h"
 #include "idl_schema.h"
+#include "mechsim/config/scene.h"
 #include "mechsim/cosim/output_log.h"
+#include "mechsim/cosim/scene_plan.h"
+#include "npm_reader.h"
 #include "mechsim/transport/domain_lock.h"
 #include "run_fixture.h"
 #include "ws_test_client.h"
@@ -305,6 +308,73 @@ TEST_F(Live, TopicServeFollowsARunningDomain) {
     EXPECT_GE(w.of(topic).size(), 10u) << topic;
   }
 }
+
+// The protocol's own client (@foxglove/ws-protocol) and Foxglove's OMG IDL deserializer
+// (@foxglove/omgidl-serialization) watch a run; the browser page's decoder (live.js) decodes
+// the same messages. Both give the nodes' logged values at the logged steps.
+struct ReferenceRun {
+  std::string scene;
+  std::vector<std::string> args;
+};
+class LiveReference : public Live, public ::testing::WithParamInterface<ReferenceRun> {};
+
+TEST_P(LiveReference, TheProtocolsOwnClientAndThePageDecodeTheNodesValues) {
+  if (!npm_reader::in_path("node")) GTEST_SKIP() << "node not installed (Debian packages nodejs, npm)";
+  const std::filesystem::path client_dir = std::filesystem::path(MECHSIM_BIN_DIR).parent_path() / "live-client";
+  if (!std::filesystem::exists(client_dir / "node_modules" / "@foxglove" / "ws-protocol") ||
+      npm_reader::read_text(client_dir / ".installed-package-lock.json") !=
+          npm_reader::read_text(std::string(MECHSIM_SOURCE_DIR) + "/tests/integration/live_client/package-lock.json"))
+    GTEST_SKIP() << "@foxglove/ws-protocol is not installed (from the current lock file) in " << client_dir
+                 << ": run tools/install-test-deps.sh (it needs the npm registry once)";
+  const ReferenceRun& p = GetParam();
+  std::vector<std::string> args = p.args;
+  args.insert(args.end(), {"--live", "0", "--set", "dds.domain=" + std::to_string(domain_.domain_id())});
+  const pid_t pid = spawn(launch_args(scene_path(p.scene), "run", args), log("run"));
+  const int port = wait_for_port(log("run"), pid);
+  ASSERT_GT(port, 0) << slurp(log("run"));
+  const std::string out = (dir_ / "watched.json").string();
+  const pid_t watcher = spawn({"/usr/bin/env", "node", (client_dir / "watch_live.mjs").string(), "ws://127.0.0.1:" + std::to_string(port) + "/",
+                               std::string(MECHSIM_SOURCE_DIR) + "/tools/live/page/live.js", out, "120"},
+                              log("watcher"));
+  const CommandResult r = wait_for(pid, log("run"), 120);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const CommandResult w = wait_for(watcher, log("watcher"), 30);  // ends when the server closes
+  ASSERT_EQ(w.exit_code, 0) << w.output;
+  const json seen = json::parse(slurp(out));
+  EXPECT_TRUE(seen["errors"].empty()) << seen["errors"].dump(2);
+  EXPECT_EQ(seen["serverInfo"]["metadata"]["run_id"], summary("run")["run_id"]);
+  const config::Scene scene = config::load_scene(scene_path(p.scene));  // the plan refers to it
+  const cosim::ScenePlan plan = cosim::ScenePlan::build(scene);
+  for (const auto& node : plan.nodes()) {
+    SCOPED_TRACE(node.topic);
+    const cosim::OutputLog log_of_node = cosim::read_output_log((run_folder("run") / (node.name() + ".outputs.bin")).string());
+    int messages = 0, compared = 0;
+    for (const auto& m : seen["messages"]) {
+      if (m["topic"] != node.topic) continue;
+      ++messages;
+      const json& fox = m["foxglove"];
+      // The page plots booleans as 0 and 1.
+      for (const auto& [key, value] : m["page"].items())
+        EXPECT_EQ(fox[key].is_boolean() ? json(fox[key].get<bool>() ? 1 : 0) : fox[key], value) << key << ": the page's decoder and Foxglove's differ";
+      const auto step = fox["header.step"].get<std::uint64_t>();
+      ASSERT_LT(step, log_of_node.rows());
+      EXPECT_EQ(m["timestamp_ns"].get<double>(), std::round(fox["header.t"].get<double>() * 1e9));
+      for (const auto& [key, value] : fox.items()) {
+        const int col = log_of_node.column(key);
+        if (col < 0 || !value.is_number()) continue;
+        ++compared;
+        EXPECT_EQ(value.get<double>(), log_of_node.data[col][step]) << key << " at step " << step;
+      }
+    }
+    EXPECT_GE(messages, 10);
+    EXPECT_GE(compared, messages);  // at least one logged field a message
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, LiveReference,
+                         ::testing::Values(ReferenceRun{"cam_press.yaml", {"--mode", "realtime", "--rtf", "1"}},
+                                           ReferenceRun{"nc_slide_loop.yaml", {"--end", "1 s"}}),
+                         [](const auto& info) { return info.param.scene.substr(0, info.param.scene.find('.')); });
 
 }  // namespace
 }  // namespace mechsim::testing

@@ -77,7 +77,8 @@ int serve_domain(const TopicServeArgs& a) {
   try {
     d.topics.validate();
     if (!a.scene.empty()) {  // an FMU participant's variable names, from the run's scene
-      const cosim::ScenePlan plan = cosim::ScenePlan::build(config::load_scene(a.scene));
+      const config::Scene scene = config::load_scene(a.scene);  // the plan refers to it
+      const cosim::ScenePlan plan = cosim::ScenePlan::build(scene);
       for (const auto& node : plan.nodes())
         if (node.type->publishes->layout == transport::TopicLayout::sequences)
           d.topic_fields[node.topic] = recorder::fields_text(recorder::layout_of(*node.type->publishes));
