@@ -1,5 +1,5 @@
 // The Foxglove WebSocket protocol, server side (subprotocol "foxglove.websocket.v1",
-// https://github.com/foxglove/ws-protocol/blob/main/docs/spec.md): the JSON messages a
+// https://github.com/foxglove/ws-protocol): the JSON messages a
 // server sends (serverInfo, advertise, unadvertise, status), the binary message-data frame,
 // and the client requests a read-only server answers (subscribe, unsubscribe).
 #pragma once
