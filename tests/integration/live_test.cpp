@@ -316,6 +316,7 @@ struct ReferenceRun {
   std::string scene;
   std::vector<std::string> args;
 };
+void PrintTo(const ReferenceRun& r, std::ostream* os) { *os << r.scene; }
 class LiveReference : public Live, public ::testing::WithParamInterface<ReferenceRun> {};
 
 TEST_P(LiveReference, TheProtocolsOwnClientAndThePageDecodeTheNodesValues) {
