@@ -17,6 +17,7 @@ packages=(
   libzstd-dev liblz4-dev                  # MCAP chunk compression
   libzip-dev libpugixml-dev               # FMU import: the archive and modelDescription.xml
   openssl                                 # `mechsim security init` (docs/security.md)
+  libwebsocketpp-dev libasio-dev          # the live server (header-only; docs/live.md)
 )
 case "${1:-}" in
   "") ;;

@@ -25,6 +25,7 @@
 #include "mechsim/transport/network_config.h"
 #include "replay_input.h"
 #include "run_recording.h"
+#include "live_run.h"
 #include "run_security.h"
 #include "install_paths.h"
 #include "divergence_advice.h"
@@ -92,6 +93,7 @@ class Run {
   std::map<std::string, std::string> replay_tables_;  // node -> table its process replays
   std::unique_ptr<RunRecording> recording_;
   std::unique_ptr<DomainReaders> domain_readers_;  // who reads the nodes' topics (a user's recorder)
+  std::unique_ptr<live::LiveRun> live_;            // --live: the run's live server, never waited for
 };
 
 // The last line of a node's log that says "error" (for a node that died before its status
@@ -246,7 +248,9 @@ cosim::SupervisedRun Run::run_nodes() {
     const auto domain_readers = domain_readers_ ? domain_readers_->by_topic_and_type() : decltype(domain_readers_->by_topic_and_type()){};
     for (const auto& node : plan_.nodes()) {
       const auto found = domain_readers.find({node.topic, node.type->publishes->idl_name});
-      const int readers = found == domain_readers.end() ? 0 : found->second;
+      int readers = found == domain_readers.end() ? 0 : found->second;
+      // The live server reads as a tool the run does not wait for (docs/live.md).
+      if (live_) readers -= live_->readers()[{node.topic, node.type->publishes->idl_name}];
       const transport::StatusMessage& s = watches.at(node.name()).last;
       if (s.readers_matched < readers)
         late += (late.empty() ? "" : ", ") + node.name() + " (" + std::to_string(s.readers_matched) + " of " + std::to_string(readers) + ")";
@@ -295,6 +299,13 @@ int Run::execute() {
       return 2;
     }
     replay_tables_[r.node] = table;
+  }
+  if (!opt_.live.empty()) {
+    live::LiveOptions o;
+    live::parse_listen_address(opt_.live, o);
+    o.rate_hz = opt_.live_rate_hz;
+    live_ = std::make_unique<live::LiveRun>(plan_, live::RunIdentity{scene_.name, scene_.file, hex_id(run_id_), run_dir_, domain_}, o);
+    std::fprintf(stderr, "mechsim: live: %s\n", live_->describe().c_str());
   }
   recording_ = RunRecording::start(plan_, domain_, run_dir_);
   return report(run_nodes());
@@ -415,6 +426,11 @@ int Run::report(cosim::SupervisedRun out) {
                  rec["complete"].get<bool>() ? ", every published sample" : " — INCOMPLETE: see summary.json 'recording'");
   }
 
+  if (live_) {
+    const live::LiveStats s = live_->stats();
+    summary["live"] = {{"clients", s.clients_connected}, {"clients_dropped", s.clients_dropped},
+                       {"messages_sent", s.messages_sent}, {"samples_read", s.samples_offered}};
+  }
   if (out.ok) write_comparison(scene_, assess::compare_with_reference(scene_, plan_, run_dir_), run_dir_, opt_.plots, summary);
   if (opt_.plots && summary.contains("realtime")) plot_lateness(scene_, run_dir_, summary);
   tools::write_json_file(run_dir_ + "/summary.json", summary);

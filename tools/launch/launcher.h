@@ -22,6 +22,9 @@ struct LaunchOptions {
   // "NODE=FILE": the participant publishes what an MCAP recording holds for its topic
   // instead of computing it (docs/recording.md, replay_input.h).
   std::vector<std::string> replays;
+  // "[ADDRESS:]PORT": serve the run live while it goes (tools/live, docs/live.md); "" none.
+  std::string live;
+  double live_rate_hz = 60.0;  // messages per second per channel and client, at most
 };
 
 // The scene overrides that put the launcher and every participant on one DDS vendor

@@ -1,5 +1,5 @@
 // `mechsim bag info FILE`, `mechsim bag export FILE --csv DIR`: what a recording holds, and
-// its samples decoded into one CSV per topic.
+// its samples decoded into one CSV per topic (and `bag serve`: cmd_serve.cpp).
 #include <cstdint>
 #include <cstdio>
 #include <memory>
@@ -26,7 +26,7 @@ void add_read_options(CLI::App* cmd, const std::shared_ptr<recorder::BagReadOpti
 }  // namespace
 
 void add_bag_command(CLI::App& app, int& exit_code) {
-  auto* bag = app.add_subcommand("bag", "Inspect MCAP recordings: info, export");
+  auto* bag = app.add_subcommand("bag", "Inspect MCAP recordings: info, export, serve");
   bag->require_subcommand(1);
 
   auto* info = bag->add_subcommand("info", "Topics, types, counts, time ranges, sizes, compression, complete or truncated");
@@ -77,6 +77,8 @@ void add_bag_command(CLI::App& app, int& exit_code) {
       exit_code = 1;
     }
   });
+
+  add_bag_serve_command(bag, exit_code);
 }
 
 }  // namespace mechsim::tools

@@ -1,5 +1,6 @@
 #include "commands.h"
 #include "launcher.h"
+#include "live_server.h"
 
 namespace mechsim::tools {
 
@@ -25,6 +26,21 @@ void add_launch_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--replay", opt->replays,
                   "NODE=FILE: participant NODE publishes what the MCAP recording FILE holds for its topic, step by "
                   "step in lock-step with the live nodes, instead of computing it (repeatable)");
+  cmd->add_option("--live", opt->live,
+                  "[ADDRESS:]PORT: serve the run live while it goes, Foxglove WebSocket protocol and a browser page "
+                  "(loopback unless an address is given; docs/live.md)")
+      ->check([](const std::string& text) {
+        live::LiveOptions o;
+        try {
+          live::parse_listen_address(text, o);
+        } catch (const std::invalid_argument& e) {
+          return std::string(e.what());
+        }
+        return std::string();
+      });
+  cmd->add_option("--live-rate", opt->live_rate_hz, "with --live: messages per second per channel and client, at most")
+      ->capture_default_str()
+      ->check(CLI::Range(0.1, 10000.0));
   cmd->callback([args, opt, &exit_code] {
     opt->scene_path = args->scene;
     opt->overrides = args->overrides();

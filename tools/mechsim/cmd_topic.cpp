@@ -1,4 +1,4 @@
-// `mechsim topic list|echo|hz`: what is on a DDS domain, the samples of one topic decoded
+// `mechsim topic list|echo|hz` (and `serve`: cmd_serve.cpp): what is on a DDS domain, the samples of one topic decoded
 // (YAML-like), and its rate. Samples are read raw and decoded with the recorder's CDR
 // decoder, so these commands show exactly what a recording would hold.
 //
@@ -223,7 +223,7 @@ int hz(const EndpointArgs& a, double window_s, long windows) {
 }  // namespace
 
 void add_topic_command(CLI::App& app, int& exit_code) {
-  auto* topic = app.add_subcommand("topic", "Topics on a DDS domain: list, echo, hz");
+  auto* topic = app.add_subcommand("topic", "Topics on a DDS domain: list, echo, hz, serve");
   topic->require_subcommand(1);
 
   auto* list = topic->add_subcommand("list", "Topics with their type and publisher/subscriber counts");
@@ -251,6 +251,8 @@ void add_topic_command(CLI::App& app, int& exit_code) {
   hz_cmd->add_option("--window", *hz_window, "window length in seconds")->capture_default_str();
   hz_cmd->add_option("--count", *hz_windows, "stop after this many windows (default: until Ctrl-C)");
   hz_cmd->callback([hz_args, hz_window, hz_windows, &exit_code] { exit_code = hz(*hz_args, *hz_window, *hz_windows); });
+
+  add_topic_serve_command(topic, exit_code);
 }
 
 }  // namespace mechsim::tools

@@ -31,6 +31,9 @@ void add_record_command(CLI::App& app, int& exit_code);
 void add_play_command(CLI::App& app, int& exit_code);
 void add_bag_command(CLI::App& app, int& exit_code);
 void add_topic_command(CLI::App& app, int& exit_code);
+// `topic serve`, `bag serve` (cmd_serve.cpp, docs/live.md): registered by the topic and bag commands.
+void add_topic_serve_command(CLI::App* topic, int& exit_code);
+void add_bag_serve_command(CLI::App* bag, int& exit_code);
 void add_bench_command(CLI::App& app, int& exit_code);
 void add_agent_command(CLI::App& app, int& exit_code);
 void add_security_command(CLI::App& app, int& exit_code);
