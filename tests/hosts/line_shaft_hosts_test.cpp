@@ -45,8 +45,10 @@ TEST_F(HostBed, LineShaftAcrossFourHosts) {
   const fs::path multi = dir_ / "multi";
   std::vector<std::string> argv{ip_command(), "netns", "exec", ns(1), kMechsim, "launch", scene, "--runs-dir", multi.string(),
                                 "--no-plot", "--no-progress", "--ready-timeout", "300", "--set", "dds.domain=" + std::to_string(kDomain)};
-  for (int h = 1; h <= kHosts; ++h)
-    argv.insert(argv.end(), {"--set", "hosts.h" + std::to_string(h) + ".address=" + address(h)});
+  for (int h = 1; h <= kHosts; ++h) {
+    const auto keys = host_args(h);
+    argv.insert(argv.end(), keys.begin(), keys.end());
+  }
   std::vector<std::string> participants{"cvt"};
   for (int k = 1; k <= stations; ++k) {
     const std::string host = "h" + std::to_string((k - 1) / per_host + 1);

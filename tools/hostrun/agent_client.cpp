@@ -24,11 +24,8 @@ bool plain_file_name(const std::string& name) {
 
 }  // namespace
 
-AgentClient::AgentClient(transport::Participant& participant, std::uint64_t run_id, std::string run_dir)
-    : participant_(participant), run_id_(run_id), run_dir_(std::move(run_dir)) {
-  requests_ = participant_.create_agent_writer(transport::kAgentRequestTopic);
-  replies_ = participant_.create_agent_reader(transport::kAgentReplyTopic);
-}
+AgentClient::AgentClient(std::unique_ptr<AgentLink> link, std::uint64_t run_id, std::string run_dir)
+    : link_(std::move(link)), run_id_(run_id), run_dir_(std::move(run_dir)) {}
 
 AgentClient::~AgentClient() {
   // Whatever happened, the remote nodes of this run must not outlive the launcher; the
@@ -49,7 +46,7 @@ void AgentClient::send(std::int32_t kind, const std::string& host, const std::st
   m.host = host;
   m.node = node;
   m.text = text;
-  requests_->write(m);
+  link_->send(m);
 }
 
 std::vector<std::string> AgentClient::wait_for_agents(const std::vector<std::string>& addresses, double timeout_s,
@@ -62,9 +59,10 @@ std::vector<std::string> AgentClient::wait_for_agents(const std::vector<std::str
       if (!hello_.count(a)) missing.push_back(a);
     // An agent's hello arrived: its reader of requests exists; matched is checked too so
     // that the first start is not written into the void.
-    if (missing.empty() && requests_->matched_readers() >= static_cast<int>(addresses.size())) return {};
-    if (seconds_since(t0) > timeout_s || interrupted()) return missing.empty() ? std::vector<std::string>{"(requests not matched)"} : missing;
-    participant_.wait(std::chrono::milliseconds(20));
+    if (missing.empty() && link_->reaches(addresses.size())) return {};
+    const bool lost = std::any_of(missing.begin(), missing.end(), [&](const std::string& a) { return link_->gone(a); });
+    if (lost || seconds_since(t0) > timeout_s || interrupted()) return missing.empty() ? std::vector<std::string>{"(requests not matched)"} : missing;
+    link_->wait(std::chrono::milliseconds(20));
   }
 }
 
@@ -129,7 +127,7 @@ void AgentClient::handle(const transport::AgentMessage& m) {
 }
 
 void AgentClient::pump() {
-  while (auto m = replies_->take()) handle(*m);
+  while (auto m = link_->take()) handle(*m);
   if (seconds_since(last_heartbeat_) > kHeartbeatPeriodS && !node_address_.empty()) {
     send(static_cast<std::int32_t>(AgentKind::heartbeat), kAllAgents, "", "");
     last_heartbeat_ = Clock::now();
@@ -174,7 +172,7 @@ std::vector<std::string> AgentClient::collect(double timeout_s) {
         if (!collected_.count(a)) send(static_cast<std::int32_t>(AgentKind::collect), a, "", "");
       last_ask = Clock::now();
     }
-    participant_.wait(std::chrono::milliseconds(20));
+    link_->wait(std::chrono::milliseconds(20));
   }
   std::vector<std::string> missing;
   for (const auto& a : addresses) {
