@@ -153,6 +153,42 @@ TEST(StdioAgent, RefusesLikeTheDaemonAndEndsWithItsSession) {
   fs::remove_all(dir);
 }
 
+// A host's bounds (docs/hosts.md, "Bounds"): with --max-processes 1 a second node is refused
+// while the first runs, and with --max-file-bytes a start request whose scene is larger.
+TEST(StdioAgent, RefusesWhatWouldExceedTheHostsBounds) {
+  const fs::path dir = fs::temp_directory_path() / ("mechsim-stdio-bounds-test-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "run");
+  const int domain = 9;
+  const std::string scene = slurp(MECHSIM_SOURCE_DIR "/config/scenes/cam_press.yaml");
+  std::vector<hostrun::SshSession> sessions{{"127.0.0.1",
+                                             {std::string(MECHSIM_BIN_DIR) + "/mechsim", "agent", "--stdio", "--domain",
+                                              std::to_string(domain), "--work-dir", (dir / "work").string(), "--max-processes", "1",
+                                              "--max-file-bytes", std::to_string(scene.size() + 1000)},
+                                             (dir / "session.log").string()}};
+  hostrun::AgentClient client(hostrun::ssh_agent_link(sessions), 43, (dir / "run").string());
+  ASSERT_TRUE(client.wait_for_agents({"127.0.0.1"}, 20, [] { return false; }).empty()) << slurp((dir / "session.log").string());
+  const json start{{"type", "follower"}, {"scene_yaml", scene}, {"run_folder", "r"}, {"domain", domain},
+                   {"address", "127.0.0.1"}, {"peers", {"127.0.0.1"}}};
+  json cam = start, big = start;
+  cam["type"] = "cam_shaft";
+  big["scene_yaml"] = scene + std::string(2000, '#');
+  client.start("follower", "127.0.0.1", start.dump());
+  client.start("cam", "127.0.0.1", cam.dump());
+  client.start("big", "127.0.0.1", big.dump());
+  std::map<std::string, std::string> refused;
+  for (int i = 0; i < 500 && refused.size() < 2; ++i) {
+    for (const auto& e : client.take_exits()) refused[e.node] = e.describe;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  EXPECT_EQ(refused.count("follower"), 0u) << refused["follower"];
+  EXPECT_NE(refused["cam"].find("this host runs 1 node processes, its --max-processes 1"), std::string::npos) << refused["cam"];
+  EXPECT_NE(refused["big"].find("exceeds this host's --max-file-bytes " + std::to_string(scene.size() + 1000)), std::string::npos)
+      << refused["big"];
+  EXPECT_TRUE(client.collect(20).empty());
+  fs::remove_all(dir);
+}
+
 // Bytes that are not agent frames (or a frame over the limit) end the session at once, with a
 // log line naming the sender; nothing is started.
 TEST(StdioAgent, RefusesASessionThatSendsSomethingElse) {
