@@ -208,6 +208,33 @@ class HostBed : public ::testing::Test {
     return run(argv, (runs.string() + ".log"), 240);
   }
 
+  // The K-station line shaft (`mechsim scene stations`) into <dir>/line_shaft_K.yaml, run on
+  // this machine's loopback into <dir>/single: the bytes a multi-host run must reproduce.
+  void line_shaft_single_host_run(int stations, std::string& scene) {
+    scene = (dir_ / ("line_shaft_" + std::to_string(stations) + ".yaml")).string();
+    const CommandResult gen = run({kMechsim, "scene", "stations", "--stations", std::to_string(stations), "-o", scene},
+                                  (dir_ / "generate.log").string(), 30);
+    ASSERT_EQ(gen.exit_code, 0) << gen.output;
+    const fs::path single = dir_ / "single";
+    const CommandResult one =
+        run({kMechsim, "launch", scene, "--runs-dir", single.string(), "--no-plot", "--no-progress", "--ready-timeout", "300"},
+            single.string() + ".log", 600);
+    ASSERT_EQ(one.exit_code, 0) << one.output;
+  }
+
+  // Waits up to 10 s until host 1 holds no process and hosts 2 and 3 one each (the agent or
+  // the sshd); true when they do, and a line saying what is left in `left`.
+  bool only_one_process_left_on_hosts_2_and_3(std::string& left) {
+    bool clean = false;
+    for (int i = 0; i < 100 && !clean; ++i) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      clean = pids_in(ns(1)).empty() && pids_in(ns(2)).size() == 1 && pids_in(ns(3)).size() == 1;
+    }
+    left = "processes left: host 1 " + std::to_string(pids_in(ns(1)).size()) + ", host 2 " + std::to_string(pids_in(ns(2)).size()) +
+           ", host 3 " + std::to_string(pids_in(ns(3)).size());
+    return clean;
+  }
+
   // Every packet arriving at every host dropped with probability p (iptables statistic).
   void drop_randomly(double p, int hosts = kHosts) {
     for (int h = 1; h <= hosts; ++h)

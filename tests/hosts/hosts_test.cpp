@@ -111,13 +111,8 @@ TEST_F(HostBed, AKilledLauncherLeavesNothingRunningOnAnyHost) {
   wait_for(launcher, "/dev/null", 5);
   // Host 1: its node dies with the launcher (PR_SET_PDEATHSIG); hosts 2, 3: their nodes end
   // on the partition watchdog (2 s) or are stopped by their agent after its heartbeat timeout.
-  bool clean = false;
-  for (int i = 0; i < 100 && !clean; ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-    clean = pids_in(ns(1)).empty() && pids_in(ns(2)).size() == 1 && pids_in(ns(3)).size() == 1;
-  }
-  EXPECT_TRUE(clean) << "processes left: host 1 " << pids_in(ns(1)).size() << ", host 2 " << pids_in(ns(2)).size() << ", host 3 "
-                     << pids_in(ns(3)).size() << " (agents count 1)";
+  std::string left;
+  EXPECT_TRUE(only_one_process_left_on_hosts_2_and_3(left)) << left << " (agents count 1)";
   // The agent dropped the run after its heartbeat timeout (its node may have ended before,
   // on its own partition watchdog: its partner on host 1 died with the launcher).
   for (int i = 0; i < 50 && slurp((dir_ / "agent2.log").string()).find("forgotten") == std::string::npos; ++i)

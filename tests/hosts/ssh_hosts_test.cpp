@@ -122,13 +122,8 @@ TEST_F(OverSsh, AKilledLauncherTakesItsSessionsAndTheirNodesAlong) {
   wait_for(launcher, "/dev/null", 5);
   // The ssh clients die with the launcher (PR_SET_PDEATHSIG), each agent sees its stdin end
   // and stops its node: only the listening sshd is left on each host.
-  bool clean = false;
-  for (int i = 0; i < 100 && !clean; ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-    clean = pids_in(ns(1)).empty() && pids_in(ns(2)).size() == 1 && pids_in(ns(3)).size() == 1;
-  }
-  EXPECT_TRUE(clean) << "processes left: host 1 " << pids_in(ns(1)).size() << ", host 2 " << pids_in(ns(2)).size() << ", host 3 "
-                     << pids_in(ns(3)).size() << " (sshd counts 1)";
+  std::string left;
+  EXPECT_TRUE(only_one_process_left_on_hosts_2_and_3(left)) << left << " (sshd counts 1)";
 }
 
 TEST_F(OverSsh, AnUnknownHostKeyIsRefusedByssh) {
@@ -152,15 +147,10 @@ TEST_F(OverSsh, AnUnknownHostKeyIsRefusedByssh) {
 TEST_F(OverSsh, LineShaftOf33ParticipantsAProcessEachOnTwoHosts) {
   start_sshd(2);
   if (IsSkipped() || HasFatalFailure()) return;
-  const std::string scene = (dir_ / "line_shaft_16.yaml").string();
-  const CommandResult gen = run({kMechsim, "scene", "stations", "--stations", "16", "-o", scene}, (dir_ / "generate.log").string(), 30);
-  ASSERT_EQ(gen.exit_code, 0) << gen.output;
+  std::string scene;
+  line_shaft_single_host_run(16, scene);
+  if (HasFatalFailure()) return;
   const fs::path single = dir_ / "single";
-  const CommandResult one =
-      run({kMechsim, "launch", scene, "--runs-dir", single.string(), "--no-plot", "--no-progress", "--ready-timeout", "300"},
-          single.string() + ".log", 600);
-  ASSERT_EQ(one.exit_code, 0) << one.output;
-
   const fs::path multi = dir_ / "multi";
   std::vector<std::string> extra{"--ready-timeout", "300", "--set", "processes=per_participant", "--set", "participants.cvt.host=h1"};
   for (int h = 1; h <= 2; ++h) {

@@ -25,6 +25,30 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
+// The requests a start must pass, on either transport: refused by the agent, each naming why.
+void expect_refusals(hostrun::AgentClient& client, int domain, const fs::path& log) {
+  const json good{{"type", "follower"}, {"scene_yaml", ""}, {"run_folder", "r"}, {"domain", domain},
+                  {"address", "127.0.0.1"}, {"peers", {"127.0.0.1"}}};
+  json shell = good, escape = good, other_domain = good;
+  shell["type"] = "/bin/sh";
+  escape["run_folder"] = "../outside";
+  other_domain["domain"] = domain + 1;
+  client.start("a", "127.0.0.1", shell.dump());
+  client.start("b", "127.0.0.1", escape.dump());
+  client.start("c", "127.0.0.1", other_domain.dump());
+  client.start("d", "127.0.0.1", "not json");
+  std::map<std::string, std::string> refused;
+  for (int i = 0; i < 500 && refused.size() < 4; ++i) {
+    for (const auto& e : client.take_exits()) refused[e.node] = e.describe;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ASSERT_EQ(refused.size(), 4u) << slurp(log.string());
+  EXPECT_NE(refused["a"].find("'/bin/sh' is not a mechsim node type"), std::string::npos) << refused["a"];
+  EXPECT_NE(refused["b"].find("run_folder must be a plain folder name"), std::string::npos) << refused["b"];
+  EXPECT_NE(refused["c"].find("this agent serves " + std::to_string(domain)), std::string::npos) << refused["c"];
+  EXPECT_NE(refused["d"].find("not a JSON object"), std::string::npos) << refused["d"];
+}
+
 TEST(Agent, RefusesAnythingButAMechsimNodeOfItsDomain) {
   transport::DomainLock domain = transport::DomainLock::acquire();
   const fs::path dir = fs::temp_directory_path() / ("mechsim-agent-test-" + std::to_string(::getpid()));
@@ -39,24 +63,7 @@ TEST(Agent, RefusesAnythingButAMechsimNodeOfItsDomain) {
     hostrun::AgentClient client(hostrun::dds_agent_link(*participant), 42, (dir / "run").string());
     fs::create_directories(dir / "run");
     ASSERT_TRUE(client.wait_for_agents({"127.0.0.1"}, 20, [] { return false; }).empty()) << slurp((dir / "agent.log").string());
-    const json good{{"type", "follower"}, {"scene_yaml", ""}, {"run_folder", "r"}, {"domain", domain.domain_id()},
-                    {"address", "127.0.0.1"}, {"peers", {"127.0.0.1"}}};
-    json shell = good, escape = good, other_domain = good;
-    shell["type"] = "/bin/sh";
-    escape["run_folder"] = "../outside";
-    other_domain["domain"] = domain.domain_id() + 1;
-    client.start("a", "127.0.0.1", shell.dump());
-    client.start("b", "127.0.0.1", escape.dump());
-    client.start("c", "127.0.0.1", other_domain.dump());
-    std::map<std::string, std::string> refused;
-    for (int i = 0; i < 500 && refused.size() < 3; ++i) {
-      for (const auto& e : client.take_exits()) refused[e.node] = e.describe;
-      participant->wait(std::chrono::milliseconds(10));
-    }
-    ASSERT_EQ(refused.size(), 3u) << slurp((dir / "agent.log").string());
-    EXPECT_NE(refused["a"].find("'/bin/sh' is not a mechsim node type"), std::string::npos) << refused["a"];
-    EXPECT_NE(refused["b"].find("run_folder must be a plain folder name"), std::string::npos) << refused["b"];
-    EXPECT_NE(refused["c"].find("this agent serves " + std::to_string(domain.domain_id())), std::string::npos) << refused["c"];
+    expect_refusals(client, domain.domain_id(), dir / "agent.log");
     EXPECT_FALSE(fs::exists(dir / "outside"));
     EXPECT_TRUE(client.collect(10).empty());
   }
@@ -99,30 +106,6 @@ TEST(Agent, ASecondAgentOnAWorkFolderInUseIsRefused) {
   EXPECT_EQ(third.exit_code, 0) << third.output;
   EXPECT_NE(third.output.find("work folder " + (dir / "work").string() + ","), std::string::npos) << third.output;
   fs::remove_all(dir);
-}
-
-// The requests a start must pass, on either transport: refused by the agent, each naming why.
-void expect_refusals(hostrun::AgentClient& client, int domain, const fs::path& log) {
-  const json good{{"type", "follower"}, {"scene_yaml", ""}, {"run_folder", "r"}, {"domain", domain},
-                  {"address", "127.0.0.1"}, {"peers", {"127.0.0.1"}}};
-  json shell = good, escape = good, other_domain = good;
-  shell["type"] = "/bin/sh";
-  escape["run_folder"] = "../outside";
-  other_domain["domain"] = domain + 1;
-  client.start("a", "127.0.0.1", shell.dump());
-  client.start("b", "127.0.0.1", escape.dump());
-  client.start("c", "127.0.0.1", other_domain.dump());
-  client.start("d", "127.0.0.1", "not json");
-  std::map<std::string, std::string> refused;
-  for (int i = 0; i < 500 && refused.size() < 4; ++i) {
-    for (const auto& e : client.take_exits()) refused[e.node] = e.describe;
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
-  ASSERT_EQ(refused.size(), 4u) << slurp(log.string());
-  EXPECT_NE(refused["a"].find("'/bin/sh' is not a mechsim node type"), std::string::npos) << refused["a"];
-  EXPECT_NE(refused["b"].find("run_folder must be a plain folder name"), std::string::npos) << refused["b"];
-  EXPECT_NE(refused["c"].find("this agent serves " + std::to_string(domain)), std::string::npos) << refused["c"];
-  EXPECT_NE(refused["d"].find("not a JSON object"), std::string::npos) << refused["d"];
 }
 
 // The session's agent (what `ssh HOST mechsim agent --stdio` runs): the same refusals as the
