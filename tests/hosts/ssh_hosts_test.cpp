@@ -142,6 +142,39 @@ TEST_F(OverSsh, AnUnknownHostKeyIsRefusedByssh) {
   EXPECT_TRUE(pids_in(ns(1)).empty()) << "the launcher left processes on host 1";
 }
 
+// Issue 37 item 4, for FMUs: the FMU files travel with the run over the session, checked by
+// sha256, and the remote nodes open the agent's checked copy (the bed's hosts share this
+// machine's filesystem, so the agent's log, which names the copy, shows which file it used).
+TEST_F(OverSsh, FmuFilesTravelWithTheRun) {
+  start_sshd(3);
+  if (IsSkipped() || HasFatalFailure()) return;
+  const std::string scene = kScenes + "fmu_speed_lag.yaml";
+  const std::vector<std::string> nodes{"cam", "lag", "filter"};
+  const fs::path single = dir_ / "single";
+  const CommandResult one = run({kMechsim, "launch", scene, "--runs-dir", single.string(), "--no-plot", "--no-progress", "--dds", "cyclone",
+                                 "--set", "processes=per_participant"},
+                                single.string() + ".log", 240);
+  ASSERT_EQ(one.exit_code, 0) << one.output;
+  std::vector<std::string> extra;
+  for (int i = 0; i < 3; ++i) {
+    const auto keys = host_args(i + 1);
+    extra.insert(extra.end(), keys.begin(), keys.end());
+    extra.insert(extra.end(), {"--set", "participants." + nodes[static_cast<std::size_t>(i)] + ".host=h" + std::to_string(i + 1)});
+  }
+  const fs::path multi = dir_ / "multi";
+  const CommandResult across = run(launch_argv(scene, multi, extra), multi.string() + ".log", 240);
+  ASSERT_EQ(across.exit_code, 0) << across.output << "\nlogs in " << dir_;
+  const fs::path a = only_run_folder(single), b = only_run_folder(multi);
+  ASSERT_FALSE(b.empty());
+  expect_identical_node_outputs(a, b, nodes, "the single-host run and the FMUs on two further hosts");
+  for (const auto& [host, fmu] : {std::pair<std::string, std::string>{"h2", "speed_lag_fmi2_cs.fmu"}, {"h3", "speed_lag_fmi3_me.fmu"}}) {
+    const std::string session = slurp((b / ("ssh-" + host + ".log")).string());
+    EXPECT_NE(session.find("received '" + fmu + "' ("), std::string::npos) << session;
+    EXPECT_NE(session.find("/files/"), std::string::npos) << session;
+    EXPECT_NE(session.find("/" + fmu + "\n"), std::string::npos) << session;
+  }
+}
+
 // Issue 37 item 5: 33 participants, a process each, on two hosts, 28 of them on host 2 (the
 // generated DDS configuration allowed 24 per host; it now allows the scene's most plus 4).
 TEST_F(OverSsh, LineShaftOf33ParticipantsAProcessEachOnTwoHosts) {

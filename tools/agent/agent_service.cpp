@@ -16,6 +16,7 @@
 #include "elapsed.h"
 #include "hosts.h"
 #include "install_paths.h"
+#include "mechsim/config/hash.h"
 #include "mechsim/config/scene.h"
 #include "mechsim/cosim/catalog.h"
 #include "mechsim/cosim/node_command_line.h"
@@ -175,7 +176,8 @@ void AgentService::start_node(const transport::AgentMessage& m, const std::strin
     // Replaced, not rewritten in place: every node of the run comes with its own start
     // request, and rewriting truncated the file under a node of the same run that was
     // reading it ("expected a scene": 1 run in 8 with 4-8 nodes per agent; performance.md).
-    tools::write_file_atomically((run.folder / "scene.yaml").string(), request.value("scene_yaml", ""));
+    tools::write_file_atomically((run.folder / "scene.yaml").string(),
+                                 with_received_files(request.value("scene_yaml", ""), request.value("files", json::object())));
     transport::UnicastNetwork network{request.value("address", ""), request.value("peers", std::vector<std::string>{}),
                                       request.value("lease_s", 5.0), request.value("participants_per_host", transport::kMaxParticipantsPerHost)};
     // A cut the run is meant to survive must not make this agent stop its nodes either.
@@ -198,6 +200,59 @@ void AgentService::start_node(const transport::AgentMessage& m, const std::strin
   }
   log_line("run " + std::to_string(m.run_id) + ": started " + type + " '" + m.node + "' in " + run.folder.string());
   reply(m.run_id, static_cast<std::int32_t>(AgentKind::started), m.node, json{{"pid", run.processes.processes().back().pid}}.dump());
+}
+
+// A file the launcher sends with the run (an FMU): kept in <work_dir>/files/<sha256>/<name>,
+// written chunk by chunk, checked against its hash when whole.
+void AgentService::put_file(const transport::AgentMessage& m, const std::string& sender) {
+  const json header = json::parse(m.text, nullptr, false);
+  auto refuse = [&](const std::string& why) {
+    log_line("refused file '" + m.node + "' from " + sender + ": " + why);
+    reply(m.run_id, static_cast<std::int32_t>(AgentKind::refused), m.node, why);
+  };
+  if (header.is_discarded() || !header.is_object()) return refuse("the file's header is not a JSON object");
+  const std::string name = header.value("name", "");
+  const std::uint64_t offset = header.value("offset", std::uint64_t{0}), size = header.value("size", std::uint64_t{0});
+  if (m.node.size() != 64 || m.node.find_first_not_of("0123456789abcdef") != std::string::npos)
+    return refuse("a file is named by its sha256 (64 hex digits)");
+  if (!plain_name(name)) return refuse("a file name must be a plain name, got '" + name + "'");
+  if (size > opt_.limits.max_file_bytes)
+    return refuse("a file of " + std::to_string(size) + " bytes exceeds this host's --max-file-bytes " + std::to_string(opt_.limits.max_file_bytes));
+  if (offset + m.data.size() > size) return refuse("a chunk beyond the file's size");
+  const fs::path folder = fs::path(opt_.work_dir) / "files" / m.node;
+  const fs::path part = folder / (name + ".part");
+  try {
+    fs::create_directories(folder);
+    std::fstream out(part, offset == 0 ? (std::ios::out | std::ios::binary | std::ios::trunc) : (std::ios::in | std::ios::out | std::ios::binary));
+    out.seekp(static_cast<std::streamoff>(offset));
+    out.write(reinterpret_cast<const char*>(m.data.data()), static_cast<std::streamsize>(m.data.size()));
+    if (!out) throw std::runtime_error(part.string() + ": cannot write");
+  } catch (const std::exception& e) {
+    return refuse(e.what());
+  }
+  if (offset + m.data.size() < size) return;
+  const std::string digest = config::sha256_hex(read_whole_file(part.string()));
+  if (digest != m.node) {
+    fs::remove(part);
+    return refuse("'" + name + "' arrived with sha256 " + digest + ", not the " + m.node + " it was sent as");
+  }
+  fs::rename(part, folder / name);
+  received_[m.node] = (folder / name).string();
+  log_line("received '" + name + "' (" + std::to_string(size) + " bytes, sha256 " + m.node + ")");
+  reply(m.run_id, static_cast<std::int32_t>(AgentKind::stored), m.node, name);
+}
+
+std::string AgentService::with_received_files(std::string scene, const json& files) const {
+  if (!files.is_object()) return scene;
+  for (const auto& [path, sha] : files.items()) {
+    const auto copy = sha.is_string() ? received_.find(sha.get<std::string>()) : received_.end();
+    if (copy == received_.end()) throw std::runtime_error("the scene's file " + path + " did not arrive (its sha256 checked) before the start");
+    if (path.empty()) continue;
+    for (std::size_t at = scene.find(path); at != std::string::npos; at = scene.find(path, at + copy->second.size()))
+      scene.replace(at, path.size(), copy->second);
+    log_line("the scene's " + path + " is " + copy->second);
+  }
+  return scene;
 }
 
 void AgentService::stream_logs(Run& run) {
@@ -290,6 +345,9 @@ void AgentService::handle(const transport::AgentMessage& m, const std::string& s
   switch (kind) {
     case AgentKind::start:
       start_node(m, sender);
+      break;
+    case AgentKind::put_file:
+      put_file(m, sender);
       break;
     case AgentKind::heartbeat:
       if (it != runs_.end()) it->second->last_heartbeat = Clock::now();

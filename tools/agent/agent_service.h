@@ -13,6 +13,8 @@
 #include <set>
 #include <string>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include "mechsim/transport/messages.h"
 #include "node_processes.h"
 
@@ -64,6 +66,10 @@ class AgentService {
   struct Run;
   void reply(std::uint64_t run_id, std::int32_t kind, const std::string& node, const std::string& text);
   void start_node(const transport::AgentMessage& m, const std::string& sender);
+  void put_file(const transport::AgentMessage& m, const std::string& sender);
+  // The scene text with each path of `files` ({path: sha256}) replaced by this agent's
+  // checked copy; throws std::runtime_error naming a file that did not arrive whole.
+  std::string with_received_files(std::string scene, const nlohmann::json& files) const;
   void stream_logs(Run& run);
   void report_exits(Run& run);
   void collect(Run& run);
@@ -75,6 +81,7 @@ class AgentService {
   std::string transport_;
   Send send_;
   std::map<std::uint64_t, std::unique_ptr<Run>> runs_;
+  std::map<std::string, std::string> received_;  // sha256 -> the checked copy's path (<work_dir>/files/<sha256>/<name>)
   std::set<std::uint64_t> finished_;  // collected: requests for them are answered, not acted on
   std::uint64_t sequence_ = 0;
   std::chrono::steady_clock::time_point last_hello_{}, last_logs_{};

@@ -2,11 +2,14 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
+#include <stdexcept>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <thread>
 
 #include "agent_protocol.h"
+#include "mechsim/config/hash.h"
 #include "elapsed.h"
 
 namespace mechsim::hostrun {
@@ -70,6 +73,34 @@ void AgentClient::start(const std::string& node, const std::string& address, con
   node_address_[node] = address;
   pending_[node] = {address, request, Clock::now()};
   send(static_cast<std::int32_t>(AgentKind::start), address, node, request);
+}
+
+std::map<std::string, std::string> AgentClient::send_files(const std::string& address, const std::vector<std::string>& paths) {
+  std::map<std::string, std::string> out;
+  for (const std::string& path : paths) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw std::runtime_error(path + ": cannot read the file to send to the agent on " + address);
+    const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    const std::string sha = config::sha256_hex(bytes);
+    const std::string name = std::filesystem::path(path).filename().string();
+    std::size_t offset = 0;
+    do {
+      const std::size_t n = std::min(transport::kAgentChunkBytes, bytes.size() - offset);
+      transport::AgentMessage m;
+      m.run_id = run_id_;
+      m.sequence = ++sequence_;
+      m.kind = static_cast<std::int32_t>(AgentKind::put_file);
+      m.host = address;
+      m.node = sha;
+      m.text = json{{"name", name}, {"offset", offset}, {"size", bytes.size()}}.dump();
+      const auto* p = reinterpret_cast<const std::byte*>(bytes.data() + offset);
+      m.data.assign(p, p + n);
+      link_->send(m);
+      offset += n;
+    } while (offset < bytes.size());
+    out[path] = sha;
+  }
+  return out;
 }
 
 void AgentClient::handle(const transport::AgentMessage& m) {

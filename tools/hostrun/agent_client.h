@@ -37,6 +37,9 @@ class AgentClient {
                                            const std::function<bool()>& interrupted);
   // Asks the agent at `address` to start participant `node`; `request` is the start text (JSON).
   void start(const std::string& node, const std::string& address, const std::string& request);
+  // Sends the files at `paths` (FMUs a participant names) to the agent at `address`, checked
+  // there by hash (agent_protocol.h, put_file). Returns {path: sha256}, for the start's "files".
+  std::map<std::string, std::string> send_files(const std::string& address, const std::vector<std::string>& paths);
   // Takes the replies (logs into <run_dir>/<node>.log), repeats unanswered starts, sends the
   // heartbeat when due. Cheap: call it from every wait loop of the launcher.
   void pump();

@@ -85,6 +85,20 @@ int participants_per_host(const config::Scene& scene, const std::string& launche
   return std::max(most + kBesideTheNodes, transport::kMaxParticipantsPerHost);
 }
 
+std::vector<std::string> files_of(const config::Scene& scene, const std::vector<std::string>& members) {
+  std::vector<std::string> out;
+  for (const std::string& name : members) {
+    const config::ParticipantSpec* p = scene.find_participant(name);
+    if (p == nullptr) continue;
+    // `fmu: FILE` beside a type fmu's settings, or the map `fmu: {file, ...}` (config/scene.h).
+    const std::optional<config::ConfigNode> fmu = p->fmu ? p->fmu : p->fmu_participant ? std::optional(p->fmu_participant->child("fmu")) : std::nullopt;
+    if (!fmu) continue;
+    const std::string file = fmu->is_map() ? fmu->child("file").as_string() : fmu->as_string();
+    if (std::find(out.begin(), out.end(), file) == out.end()) out.push_back(file);
+  }
+  return out;
+}
+
 HostLayout plan_hosts(const config::Scene& scene) {
   HostLayout layout;
   const auto local = local_ipv4_addresses();

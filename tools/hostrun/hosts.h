@@ -46,6 +46,10 @@ void set_environment(const std::vector<std::string>& entries);
 // the most participants on one host plus the launcher's own, at least the default 24.
 int participants_per_host(const config::Scene& scene, const std::string& launcher_host);
 
+// The files the participants `members` name that a host must have: their FMUs (absolute, as
+// the scene was written back), which travel with the run (AgentClient::send_files).
+std::vector<std::string> files_of(const config::Scene& scene, const std::vector<std::string>& members);
+
 // Throws config::ConfigError (file, key, what was expected) for a host that does not
 // resolve, or when participants sit on other hosts and this machine is none of the hosts.
 HostLayout plan_hosts(const config::Scene& scene);

@@ -191,6 +191,7 @@ void Run::place_nodes() {
                  {"partition_grace_s", scene_.faults.partition_grace}, {"control_writer", control_->guid()},
                  {"participants_per_host", hosts_.participants_per_host}};
     if (r.type == hostrun::kGroupType) request["members"] = r.members;
+    request["files"] = agents_->send_files(r.address, files_of(scene_, r.members));  // the FMUs travel with the run
     r.request = request.dump();
   }
   local_ = std::make_unique<ProcessNodeHost>(std::move(local));
