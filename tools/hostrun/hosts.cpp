@@ -90,7 +90,7 @@ std::vector<std::string> files_of(const config::Scene& scene, const std::vector<
   for (const std::string& name : members) {
     const config::ParticipantSpec* p = scene.find_participant(name);
     if (p == nullptr) continue;
-    // `fmu: FILE` beside a type fmu's settings, or the map `fmu: {file, ...}` (config/scene.h).
+    // `fmu: FILE` beside a type fmu's settings, or the map `fmu: {file, ...}` (mechsim/config/scene.h).
     const std::optional<config::ConfigNode> fmu = p->fmu ? p->fmu : p->fmu_participant ? std::optional(p->fmu_participant->child("fmu")) : std::nullopt;
     if (!fmu) continue;
     const std::string file = fmu->is_map() ? fmu->child("file").as_string() : fmu->as_string();
