@@ -366,9 +366,11 @@ int Run::connect() {
     const auto missing = agents_->wait_for_agents(addresses, opt_.ready_timeout_s, [] { return g_interrupt.load() != 0; });
     if (!missing.empty()) {
       if (hosts_.over_ssh) {
-        for (const auto& a : missing)
-          std::fprintf(stderr, "mechsim launch: no mechsim agent answered over ssh from %s within %g s: %s (docs/hosts.md)\n", a.c_str(),
-                       opt_.ready_timeout_s, agents_->problem(a).c_str());
+        for (const auto& a : missing) {
+          std::string why = agents_->problem(a);
+          if (why.empty()) why = "no answer within " + std::to_string(static_cast<int>(opt_.ready_timeout_s)) + " s";
+          std::fprintf(stderr, "mechsim launch: no mechsim agent answered over ssh from %s: %s (docs/hosts.md)\n", a.c_str(), why.c_str());
+        }
       } else {
         std::fprintf(stderr, "mechsim launch: no mechsim agent answered from %s on domain %d within %g s: start "
                              "`mechsim agent --domain %d --address ADDRESS --peers %s` on each of those hosts (docs/hosts.md)\n",
