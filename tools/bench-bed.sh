@@ -17,11 +17,12 @@ bed_cleanup() {
 trap bed_cleanup EXIT
 tools/netns-hosts.sh up 3
 for h in 2 3; do
-  tools/netns-hosts.sh exec "$h" "$mechsim" agent --domain 7 --address "10.77.0.$h" --peers 10.77.0.1 \
+  tools/netns-hosts.sh exec "$h" "$mechsim" agent --domain 7 --address "10.77.0.$h" --peers 10.77.0.1 --allow-unauthenticated \
     --work-dir "$work/agent$h" > "$work/agent$h.log" 2>&1 &
   bed_agents+=($!)
 done
 three_host_args=(--set dds.domain=7 --set hosts.a.address=10.77.0.1 --set hosts.b.address=10.77.0.2
+                 --set hosts.b.control=dds_agent --set hosts.c.control=dds_agent
                  --set hosts.c.address=10.77.0.3 --set participants.servo.host=a --set participants.tacho.host=b
                  --set participants.slide.host=c)
 rate() { grep -o '"steps_per_second": *[0-9.e+]*' "$1" | head -1 | sed 's/.*: *//'; }

@@ -72,7 +72,7 @@ if [ "$max_hosts" -gt 1 ]; then
   export MECHSIM_NETNS_PREFIX=mshscale
   tools/netns-hosts.sh up "$max_hosts"
   for h in $(seq 2 "$max_hosts"); do
-    tools/netns-hosts.sh exec "$h" "$mechsim" agent --domain "$domain" --address "10.77.0.$h" --peers 10.77.0.1 \
+    tools/netns-hosts.sh exec "$h" "$mechsim" agent --domain "$domain" --address "10.77.0.$h" --peers 10.77.0.1 --allow-unauthenticated \
       --work-dir "$out/agent$h" > "$out/agent$h.log" 2>&1 &
     agents+=($!)
   done
@@ -101,7 +101,7 @@ participants_of() {
 # --set options placing participant i of the scene on host (i mod H).
 host_args() {
   local scene=$1 h=$2 i=0 p args=(--set "dds.domain=$domain")
-  for j in $(seq 1 "$h"); do args+=(--set "hosts.${letters[$((j - 1))]}.address=10.77.0.$j"); done
+  for j in $(seq 1 "$h"); do args+=(--set "hosts.${letters[$((j - 1))]}.address=10.77.0.$j" --set "hosts.${letters[$((j - 1))]}.control=dds_agent"); done
   for p in $(participants_of "$scene"); do
     args+=(--set "participants.$p.host=${letters[$((i % h))]}")
     i=$((i + 1))

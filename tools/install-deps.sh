@@ -25,6 +25,7 @@ case "${1:-}" in
     packages+=(
       libgtest-dev libbenchmark-dev       # tests, benchmarks
       iproute2 iptables                   # the multi-host test bed (tools/netns-hosts.sh)
+      openssh-server openssh-client       # its sshd per host: runs over ssh (tests/hosts, docs/hosts.md)
       clang libclang-rt-14-dev            # sanitizer + libFuzzer build only (label fuzz, .ci/run)
     )
     # node + npm run the third-party MCAP reader test; machines that already have a Node.js

@@ -81,9 +81,11 @@ class Partition : public HostBed {
                                   "--runs-dir", runs.string(), "--no-plot", "--no-progress", "--end", kEnd,
                                   "--mode", "realtime", "--rtf", "0.05",
                                   "--set", "dds.domain=" + std::to_string(kDomain)};
-    for (int i = 0; i < 3; ++i)
-      argv.insert(argv.end(), {"--set", "hosts.h" + std::to_string(i + 1) + ".address=" + address(i + 1), "--set",
-                               "participants." + kNc[static_cast<std::size_t>(i)] + ".host=h" + std::to_string(i + 1)});
+    for (int i = 0; i < 3; ++i) {
+      const auto keys = host_args(i + 1);
+      argv.insert(argv.end(), keys.begin(), keys.end());
+      argv.insert(argv.end(), {"--set", "participants." + kNc[static_cast<std::size_t>(i)] + ".host=h" + std::to_string(i + 1)});
+    }
     const pid_t launcher = spawn(argv, runs.string() + ".log");
     // Stepping: the amplifier, which needs the slide's samples every step, has written
     // 16 KiB of rows (a few hundred steps of 12 000). 120 s: a guard against a hang.

@@ -1,5 +1,7 @@
 // The network-namespace test bed for one test (tools/netns-hosts.sh): kHosts hosts
-// mh<pid>-h1..n with addresses 10.77.0.1..n, agents on hosts 2.., the launcher on host 1;
+// mh<pid>-h1..n with addresses 10.77.0.1..n, the launcher on host 1, and on hosts 2.. either
+// an sshd (start_sshd: the launcher reaches them over ssh, the default) or a standing DDS
+// agent (start_agents: control dds_agent);
 // built in SetUp, removed in TearDown (and by the ctest cleanup fixture `hosts_bed_cleanup`
 // should the test process be killed). Shared by hosts_test and faults_test.
 #pragma once
@@ -110,12 +112,70 @@ class HostBed : public ::testing::Test {
   void start_agents(int last, double heartbeat_timeout_s = 3.0, bool default_work_dirs = false) {
     for (int h = 2; h <= last; ++h) {
       std::vector<std::string> argv{ip_command(), "netns", "exec", ns(h), kMechsim, "agent", "--domain", std::to_string(kDomain),
-                                    "--address", address(h), "--peers", address(1),
+                                    "--address", address(h), "--peers", address(1), "--allow-unauthenticated",
                                     "--heartbeat-timeout", std::to_string(heartbeat_timeout_s)};
       if (!default_work_dirs) argv.insert(argv.end(), {"--work-dir", (dir_ / ("agent" + std::to_string(h))).string()});
       if (h == 3 && compiled_in("fastdds")) argv.insert(argv.end(), {"--dds", "fastdds"});
       agents_.push_back(spawn(argv, (dir_ / ("agent" + std::to_string(h) + ".log")).string()));
     }
+  }
+
+  // An sshd on each of hosts 2..last (`sshd -D -f CONFIG`, listening on the host's address
+  // only), with a host key and an authorized key this test made (ssh-keygen -t ed25519), and
+  // the client's ssh config the launcher is pointed to (hosts.<h>.ssh_config): that key, a
+  // known_hosts with the host key, StrictHostKeyChecking yes. An outsider key is made too,
+  // not authorised. Launches (launch_across, host_args) then go over ssh.
+  void start_sshd(int last) {
+    if (::access("/usr/sbin/sshd", X_OK) != 0 || ::access("/usr/bin/ssh", X_OK) != 0)
+      GTEST_SKIP() << "needs OpenSSH (Debian packages openssh-server openssh-client: tools/install-deps.sh --tests)";
+    const fs::path ssh = dir_ / "ssh";
+    fs::create_directories(ssh);
+    fs::permissions(ssh, fs::perms::owner_all);
+    ASSERT_EQ(shell("ssh-keygen -q -t ed25519 -N '' -f " + (ssh / "host_key").string() + " && ssh-keygen -q -t ed25519 -N '' -f " +
+                    (ssh / "id_ed25519").string() + " && ssh-keygen -q -t ed25519 -N '' -f " + (ssh / "outsider_ed25519").string() +
+                    " && cp " + (ssh / "id_ed25519.pub").string() + " " + (ssh / "authorized_keys").string() + " && mkdir -p /run/sshd"),
+              0);
+    const std::string host_public = slurp((ssh / "host_key.pub").string());
+    std::string known_hosts;
+    for (int h = 2; h <= last; ++h) known_hosts += address(h) + " " + host_public;
+    write_text(ssh / "known_hosts", known_hosts);
+    write_text(ssh / "config", "Host *\n  User root\n  IdentityFile " + (ssh / "id_ed25519").string() +
+                                   "\n  IdentitiesOnly yes\n  UserKnownHostsFile " + (ssh / "known_hosts").string() +
+                                   "\n  StrictHostKeyChecking yes\n  GlobalKnownHostsFile /dev/null\n  LogLevel ERROR\n");
+    for (int h = 2; h <= last; ++h) {
+      const fs::path config = ssh / ("sshd_config-h" + std::to_string(h));
+      write_text(config, "ListenAddress " + address(h) + "\nPort 22\nHostKey " + (ssh / "host_key").string() +
+                             "\nAuthorizedKeysFile " + (ssh / "authorized_keys").string() + "\nPidFile " +
+                             (ssh / ("sshd-h" + std::to_string(h) + ".pid")).string() +
+                             "\nPermitRootLogin prohibit-password\nPasswordAuthentication no\nKbdInteractiveAuthentication no\n"
+                             "UsePAM no\nStrictModes no\nPrintMotd no\n");
+      const std::string log = (dir_ / ("sshd-h" + std::to_string(h) + ".log")).string();
+      sshds_.push_back(spawn({ip_command(), "netns", "exec", ns(h), "/usr/sbin/sshd", "-D", "-e", "-f", config.string()}, log));
+      bool listening = false;
+      for (int i = 0; i < 100 && !listening; ++i) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        listening = slurp(log).find("Server listening on " + address(h)) != std::string::npos;
+      }
+      ASSERT_TRUE(listening) << slurp(log);
+    }
+    over_ssh_ = true;
+  }
+  fs::path ssh_config() const { return dir_ / "ssh" / "config"; }
+
+  // The --set options that make host h of a launch: its address, and how it is reached.
+  std::vector<std::string> host_args(int h) const {
+    const std::string key = "hosts.h" + std::to_string(h);
+    std::vector<std::string> out{"--set", key + ".address=" + address(h)};
+    if (h == 1) return out;
+    if (over_ssh_) return {out[0], out[1], "--set", key + ".ssh_config=" + ssh_config().string()};
+    return {out[0], out[1], "--set", key + ".control=dds_agent"};
+  }
+
+  static void write_text(const fs::path& path, const std::string& text) {
+    FILE* f = std::fopen(path.c_str(), "w");
+    ASSERT_NE(f, nullptr) << path;
+    std::fputs(text.c_str(), f);
+    std::fclose(f);
   }
 
   void stop_agents() {
@@ -125,6 +185,9 @@ class HostBed : public ::testing::Test {
       EXPECT_FALSE(r.timed_out) << "an agent did not stop on SIGTERM";
     }
     agents_.clear();
+    for (pid_t pid : sshds_) ::kill(pid, SIGTERM);
+    for (pid_t pid : sshds_) wait_for(pid, "/dev/null", 10);
+    sshds_.clear();
     // A stopped agent leaves nothing running on its host.
     for (int h = 2; h <= kHosts; ++h) EXPECT_TRUE(pids_in(ns(h)).empty()) << "processes left on host " << h;
   }
@@ -137,11 +200,39 @@ class HostBed : public ::testing::Test {
     if (!layout.empty()) argv.insert(argv.end(), {"--dds", layout});
     for (std::size_t i = 0; i < participants.size(); ++i) {
       const std::string host = "h" + std::to_string(i + 1);
-      argv.insert(argv.end(), {"--set", "hosts." + host + ".address=" + address(static_cast<int>(i) + 1), "--set",
-                               "participants." + participants[i] + ".host=" + host});
+      const auto keys = host_args(static_cast<int>(i) + 1);
+      argv.insert(argv.end(), keys.begin(), keys.end());
+      argv.insert(argv.end(), {"--set", "participants." + participants[i] + ".host=" + host});
     }
     argv.insert(argv.end(), extra.begin(), extra.end());
     return run(argv, (runs.string() + ".log"), 240);
+  }
+
+  // The K-station line shaft (`mechsim scene stations`) into <dir>/line_shaft_K.yaml, run on
+  // this machine's loopback into <dir>/single: the bytes a multi-host run must reproduce.
+  void line_shaft_single_host_run(int stations, std::string& scene) {
+    scene = (dir_ / ("line_shaft_" + std::to_string(stations) + ".yaml")).string();
+    const CommandResult gen = run({kMechsim, "scene", "stations", "--stations", std::to_string(stations), "-o", scene},
+                                  (dir_ / "generate.log").string(), 30);
+    ASSERT_EQ(gen.exit_code, 0) << gen.output;
+    const fs::path single = dir_ / "single";
+    const CommandResult one =
+        run({kMechsim, "launch", scene, "--runs-dir", single.string(), "--no-plot", "--no-progress", "--ready-timeout", "300"},
+            single.string() + ".log", 600);
+    ASSERT_EQ(one.exit_code, 0) << one.output;
+  }
+
+  // Waits up to 10 s until host 1 holds no process and hosts 2 and 3 one each (the agent or
+  // the sshd); true when they do, and a line saying what is left in `left`.
+  bool only_one_process_left_on_hosts_2_and_3(std::string& left) {
+    bool clean = false;
+    for (int i = 0; i < 100 && !clean; ++i) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      clean = pids_in(ns(1)).empty() && pids_in(ns(2)).size() == 1 && pids_in(ns(3)).size() == 1;
+    }
+    left = "processes left: host 1 " + std::to_string(pids_in(ns(1)).size()) + ", host 2 " + std::to_string(pids_in(ns(2)).size()) +
+           ", host 3 " + std::to_string(pids_in(ns(3)).size());
+    return clean;
   }
 
   // Every packet arriving at every host dropped with probability p (iptables statistic).
@@ -166,7 +257,9 @@ class HostBed : public ::testing::Test {
   std::string prefix_;
   fs::path dir_;
   bool bed_up_ = false;
+  bool over_ssh_ = false;
   std::vector<pid_t> agents_;
+  std::vector<pid_t> sshds_;
 };
 
 }  // namespace mechsim::testing

@@ -28,16 +28,10 @@ int stations_across_hosts() {
 TEST_F(HostBed, LineShaftAcrossFourHosts) {
   const int stations = stations_across_hosts();
   start_agents(kHosts);
-  const std::string scene = (dir_ / "line_shaft_16.yaml").string();
-  const CommandResult gen = run({kMechsim, "scene", "stations", "--stations", std::to_string(stations), "-o", scene},
-                                (dir_ / "generate.log").string(), 30);
-  ASSERT_EQ(gen.exit_code, 0) << gen.output;
-
+  std::string scene;
+  line_shaft_single_host_run(stations, scene);
+  if (HasFatalFailure()) return;
   const fs::path single = dir_ / "single";
-  const CommandResult one =
-      run({kMechsim, "launch", scene, "--runs-dir", single.string(), "--no-plot", "--no-progress", "--ready-timeout", "300"},
-          single.string() + ".log", 600);
-  ASSERT_EQ(one.exit_code, 0) << one.output;
 
   // The stations in four consecutive groups, the first with the CVT on h1 (K = 16: 1-4, 5-8,
   // 9-12, 13-16): every segment between neighbouring groups crosses a host boundary both ways.
@@ -45,8 +39,10 @@ TEST_F(HostBed, LineShaftAcrossFourHosts) {
   const fs::path multi = dir_ / "multi";
   std::vector<std::string> argv{ip_command(), "netns", "exec", ns(1), kMechsim, "launch", scene, "--runs-dir", multi.string(),
                                 "--no-plot", "--no-progress", "--ready-timeout", "300", "--set", "dds.domain=" + std::to_string(kDomain)};
-  for (int h = 1; h <= kHosts; ++h)
-    argv.insert(argv.end(), {"--set", "hosts.h" + std::to_string(h) + ".address=" + address(h)});
+  for (int h = 1; h <= kHosts; ++h) {
+    const auto keys = host_args(h);
+    argv.insert(argv.end(), keys.begin(), keys.end());
+  }
   std::vector<std::string> participants{"cvt"};
   for (int k = 1; k <= stations; ++k) {
     const std::string host = "h" + std::to_string((k - 1) / per_host + 1);

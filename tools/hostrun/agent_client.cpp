@@ -2,11 +2,14 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
+#include <stdexcept>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <thread>
 
 #include "agent_protocol.h"
+#include "mechsim/config/hash.h"
 #include "elapsed.h"
 
 namespace mechsim::hostrun {
@@ -24,11 +27,8 @@ bool plain_file_name(const std::string& name) {
 
 }  // namespace
 
-AgentClient::AgentClient(transport::Participant& participant, std::uint64_t run_id, std::string run_dir)
-    : participant_(participant), run_id_(run_id), run_dir_(std::move(run_dir)) {
-  requests_ = participant_.create_agent_writer(transport::kAgentRequestTopic);
-  replies_ = participant_.create_agent_reader(transport::kAgentReplyTopic);
-}
+AgentClient::AgentClient(std::unique_ptr<AgentLink> link, std::uint64_t run_id, std::string run_dir)
+    : link_(std::move(link)), run_id_(run_id), run_dir_(std::move(run_dir)) {}
 
 AgentClient::~AgentClient() {
   // Whatever happened, the remote nodes of this run must not outlive the launcher; the
@@ -49,7 +49,7 @@ void AgentClient::send(std::int32_t kind, const std::string& host, const std::st
   m.host = host;
   m.node = node;
   m.text = text;
-  requests_->write(m);
+  link_->send(m);
 }
 
 std::vector<std::string> AgentClient::wait_for_agents(const std::vector<std::string>& addresses, double timeout_s,
@@ -62,9 +62,10 @@ std::vector<std::string> AgentClient::wait_for_agents(const std::vector<std::str
       if (!hello_.count(a)) missing.push_back(a);
     // An agent's hello arrived: its reader of requests exists; matched is checked too so
     // that the first start is not written into the void.
-    if (missing.empty() && requests_->matched_readers() >= static_cast<int>(addresses.size())) return {};
-    if (seconds_since(t0) > timeout_s || interrupted()) return missing.empty() ? std::vector<std::string>{"(requests not matched)"} : missing;
-    participant_.wait(std::chrono::milliseconds(20));
+    if (missing.empty() && link_->reaches(addresses.size())) return {};
+    const bool lost = std::any_of(missing.begin(), missing.end(), [&](const std::string& a) { return link_->gone(a); });
+    if (lost || seconds_since(t0) > timeout_s || interrupted()) return missing.empty() ? std::vector<std::string>{"(requests not matched)"} : missing;
+    link_->wait(std::chrono::milliseconds(20));
   }
 }
 
@@ -72,6 +73,34 @@ void AgentClient::start(const std::string& node, const std::string& address, con
   node_address_[node] = address;
   pending_[node] = {address, request, Clock::now()};
   send(static_cast<std::int32_t>(AgentKind::start), address, node, request);
+}
+
+std::map<std::string, std::string> AgentClient::send_files(const std::string& address, const std::vector<std::string>& paths) {
+  std::map<std::string, std::string> out;
+  for (const std::string& path : paths) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw std::runtime_error(path + ": cannot read the file to send to the agent on " + address);
+    const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    const std::string sha = config::sha256_hex(bytes);
+    const std::string name = std::filesystem::path(path).filename().string();
+    std::size_t offset = 0;
+    do {
+      const std::size_t n = std::min(transport::kAgentChunkBytes, bytes.size() - offset);
+      transport::AgentMessage m;
+      m.run_id = run_id_;
+      m.sequence = ++sequence_;
+      m.kind = static_cast<std::int32_t>(AgentKind::put_file);
+      m.host = address;
+      m.node = sha;
+      m.text = json{{"name", name}, {"offset", offset}, {"size", bytes.size()}}.dump();
+      const auto* p = reinterpret_cast<const std::byte*>(bytes.data() + offset);
+      m.data.assign(p, p + n);
+      link_->send(m);
+      offset += n;
+    } while (offset < bytes.size());
+    out[path] = sha;
+  }
+  return out;
 }
 
 void AgentClient::handle(const transport::AgentMessage& m) {
@@ -129,7 +158,7 @@ void AgentClient::handle(const transport::AgentMessage& m) {
 }
 
 void AgentClient::pump() {
-  while (auto m = replies_->take()) handle(*m);
+  while (auto m = link_->take()) handle(*m);
   if (seconds_since(last_heartbeat_) > kHeartbeatPeriodS && !node_address_.empty()) {
     send(static_cast<std::int32_t>(AgentKind::heartbeat), kAllAgents, "", "");
     last_heartbeat_ = Clock::now();
@@ -174,7 +203,7 @@ std::vector<std::string> AgentClient::collect(double timeout_s) {
         if (!collected_.count(a)) send(static_cast<std::int32_t>(AgentKind::collect), a, "", "");
       last_ask = Clock::now();
     }
-    participant_.wait(std::chrono::milliseconds(20));
+    link_->wait(std::chrono::milliseconds(20));
   }
   std::vector<std::string> missing;
   for (const auto& a : addresses) {

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "mechsim/transport/participant.h"
+#include "agent_link.h"
 
 namespace mechsim::hostrun {
 
@@ -28,7 +28,8 @@ struct RemoteExit {
 
 class AgentClient {
  public:
-  AgentClient(transport::Participant& participant, std::uint64_t run_id, std::string run_dir);
+  // `link`: the SSH sessions or the DDS daemons of the run's hosts (agent_link.h).
+  AgentClient(std::unique_ptr<AgentLink> link, std::uint64_t run_id, std::string run_dir);
   ~AgentClient();
   // Waits until an agent answered from each address and the request writer reached them
   // all. Returns the addresses still without an agent at the timeout (empty: all there).
@@ -36,6 +37,9 @@ class AgentClient {
                                            const std::function<bool()>& interrupted);
   // Asks the agent at `address` to start participant `node`; `request` is the start text (JSON).
   void start(const std::string& node, const std::string& address, const std::string& request);
+  // Sends the files at `paths` (FMUs a participant names) to the agent at `address`, checked
+  // there by hash (agent_protocol.h, put_file). Returns {path: sha256}, for the start's "files".
+  std::map<std::string, std::string> send_files(const std::string& address, const std::vector<std::string>& paths);
   // Takes the replies (logs into <run_dir>/<node>.log), repeats unanswered starts, sends the
   // heartbeat when due. Cheap: call it from every wait loop of the launcher.
   void pump();
@@ -50,16 +54,16 @@ class AgentClient {
   static constexpr double kSilentAgentS = 3.0;
   // The agents' hello texts (JSON) by address, for the summary.
   const std::map<std::string, std::string>& agents() const { return hello_; }
+  // Why the agent at `address` does not answer, when the link knows ("" otherwise).
+  std::string problem(const std::string& address) const { return link_->problem(address); }
 
  private:
   void send(std::int32_t kind, const std::string& host, const std::string& node, const std::string& text);
   void handle(const transport::AgentMessage& m);
 
-  transport::Participant& participant_;
+  std::unique_ptr<AgentLink> link_;
   std::uint64_t run_id_;
   std::string run_dir_;
-  std::unique_ptr<transport::AgentWriter> requests_;
-  std::unique_ptr<transport::AgentReader> replies_;
   std::map<std::string, std::string> hello_;  // address -> hello text
   std::map<std::string, std::chrono::steady_clock::time_point> last_heard_;  // address -> last message
   struct PendingStart {

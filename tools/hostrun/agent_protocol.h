@@ -19,6 +19,12 @@
 //                          until `collected`)
 //   agent    -> file       node = file name, data = a chunk, text = {offset, size}
 //   agent    -> collected  text = {files: [names]}: every chunk of every file was written
+//   launcher -> put_file   a file a participant names (an FMU), before the start that needs
+//                          it: node = its sha256 (hex), text = {name, offset, size}, data = a
+//                          chunk; the agent checks the hash when the last chunk is in and
+//                          answers `stored` (node = the hash) or `refused` (node = the hash)
+//   launcher -> start ...  text.files = {path in the scene: sha256}: the agent points the
+//                          scene's path at its checked copy, or refuses the start
 //
 // Every message carries the run id; an agent acts only on requests whose host is one of its
 // own addresses (or "*", for all agents of the run).
@@ -36,10 +42,12 @@ enum class AgentKind : std::int32_t {
   exited = 5,
   file = 6,
   collected = 7,
+  stored = 8,
   start = 101,
   heartbeat = 102,
   stop = 103,
   collect = 104,
+  put_file = 105,
 };
 
 inline constexpr const char* kAllAgents = "*";

@@ -75,6 +75,30 @@ void set_environment(const std::vector<std::string>& entries) {
   }
 }
 
+int participants_per_host(const config::Scene& scene, const std::string& launcher_host) {
+  std::map<std::string, int> on_host;
+  for (const auto& p : scene.participants) ++on_host[p.host.empty() ? launcher_host : p.host];
+  int most = 0;
+  for (const auto& [host, n] : on_host) most = std::max(most, n);
+  // The launcher's participant, its recorder, its domain reader and a spare (a user's tool).
+  constexpr int kBesideTheNodes = 4;
+  return std::max(most + kBesideTheNodes, transport::kMaxParticipantsPerHost);
+}
+
+std::vector<std::string> files_of(const config::Scene& scene, const std::vector<std::string>& members) {
+  std::vector<std::string> out;
+  for (const std::string& name : members) {
+    const config::ParticipantSpec* p = scene.find_participant(name);
+    if (p == nullptr) continue;
+    // `fmu: FILE` beside a type fmu's settings, or the map `fmu: {file, ...}` (mechsim/config/scene.h).
+    const std::optional<config::ConfigNode> fmu = p->fmu ? p->fmu : p->fmu_participant ? std::optional(p->fmu_participant->child("fmu")) : std::nullopt;
+    if (!fmu) continue;
+    const std::string file = fmu->is_map() ? fmu->child("file").as_string() : fmu->as_string();
+    if (std::find(out.begin(), out.end(), file) == out.end()) out.push_back(file);
+  }
+  return out;
+}
+
 HostLayout plan_hosts(const config::Scene& scene) {
   HostLayout layout;
   const auto local = local_ipv4_addresses();
@@ -108,6 +132,24 @@ HostLayout plan_hosts(const config::Scene& scene) {
   layout.peers.push_back(layout.launcher_address);
   for (const auto& [participant, address] : layout.remote)
     if (std::find(layout.peers.begin(), layout.peers.end(), address) == layout.peers.end()) layout.peers.push_back(address);
+  // One way to reach the agents of a run: SSH sessions, or the DDS daemons of its domain.
+  for (const auto& h : scene.hosts)
+    if (h.name != layout.launcher_host && std::count(layout.peers.begin(), layout.peers.end(), layout.address.at(h.name)))
+      layout.remote_hosts[layout.address.at(h.name)] = h;
+  const std::string control = layout.remote_hosts.begin()->second.control;
+  for (const auto& [address, h] : layout.remote_hosts)
+    if (h.control != control)
+      throw config::ConfigError(scene.file, h.key_path + ".control", "expected every host of a run reached the same way: " +
+                                                                          layout.remote_hosts.begin()->second.key_path + " has control " +
+                                                                          control + ", this one " + h.control);
+  layout.over_ssh = control == "ssh";
+  layout.participants_per_host = participants_per_host(scene, layout.launcher_host);
+  if (layout.participants_per_host > transport::kMostParticipantsPerHost)
+    throw config::ConfigError(scene.file, "hosts", "expected at most " + std::to_string(transport::kMostParticipantsPerHost - 4) +
+                                                       " participants on one host (a DDS domain has ports for " +
+                                                       std::to_string(transport::kMostParticipantsPerHost) +
+                                                       " participants per host): group them into processes (processes: per_core) or "
+                                                       "spread them over more hosts");
   return layout;
 }
 

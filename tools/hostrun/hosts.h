@@ -26,6 +26,11 @@ struct HostLayout {
   std::map<std::string, std::string> address;  // host name -> IPv4 address
   std::vector<std::string> peers;              // addresses of the launcher's host and every host in use
   std::map<std::string, std::string> remote;   // participant -> address of its host's agent (absent: local)
+  std::map<std::string, config::HostSpec> remote_hosts;  // address -> the host an agent serves there
+  bool over_ssh = true;                        // the agents are SSH sessions (false: standing DDS daemons)
+  // DDS participants each host may hold (transport::UnicastNetwork): the most on one host,
+  // and room for the launcher's own, at least the default 24.
+  int participants_per_host = transport::kMaxParticipantsPerHost;
 };
 
 // Writes <dir>/cyclonedds.xml and <dir>/fastdds.xml for `network` (the folder is created)
@@ -36,6 +41,14 @@ struct HostLayout {
 std::vector<std::string> write_unicast_dds_files(const std::string& dir, const transport::UnicastNetwork& network);
 // Sets "NAME=value" entries in this process's environment (before any DDS participant exists).
 void set_environment(const std::vector<std::string>& entries);
+
+// The participant indices every host of the run allows (HostLayout::participants_per_host):
+// the most participants on one host plus the launcher's own, at least the default 24.
+int participants_per_host(const config::Scene& scene, const std::string& launcher_host);
+
+// The files the participants `members` name that a host must have: their FMUs (absolute, as
+// the scene was written back), which travel with the run (AgentClient::send_files).
+std::vector<std::string> files_of(const config::Scene& scene, const std::vector<std::string>& members);
 
 // Throws config::ConfigError (file, key, what was expected) for a host that does not
 // resolve, or when participants sit on other hosts and this machine is none of the hosts.

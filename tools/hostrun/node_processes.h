@@ -4,6 +4,7 @@
 
 #include <sys/types.h>
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -45,6 +46,10 @@ class NodeProcesses {
   // SIGTERM to all running, wait up to `grace_s`, then SIGKILL and reap.
   void stop_all(double grace_s);
   std::vector<NodeProcess>& processes() { return processes_; }
+  const std::vector<NodeProcess>& processes() const { return processes_; }
+  // Every process started after this may write files of at most `bytes` each (RLIMIT_FSIZE:
+  // a larger write fails and the kernel sends SIGXFSZ); 0 = no limit of its own.
+  void set_file_size_limit(std::uint64_t bytes) { file_size_limit_ = bytes; }
   // The process of node `name`; throws std::logic_error for a name that was never started.
   NodeProcess& find(const std::string& name);
   const NodeProcess& find(const std::string& name) const { return const_cast<NodeProcesses*>(this)->find(name); }
@@ -54,6 +59,7 @@ class NodeProcesses {
               const std::vector<std::string>& environment);
   std::vector<NodeProcess> processes_;
   AgentClient* agents_ = nullptr;
+  std::uint64_t file_size_limit_ = 0;
 };
 
 }  // namespace mechsim::hostrun

@@ -190,8 +190,10 @@ void Run::place_nodes() {
   for (RemoteNode& r : remote) {
     json request{{"type", r.type}, {"scene_yaml", scene_text}, {"run_folder", fs::path(run_dir_).filename().string()},
                  {"domain", domain_}, {"address", r.address}, {"peers", hosts_.peers}, {"lease_s", lease_for(scene_)},
-                 {"partition_grace_s", scene_.faults.partition_grace}, {"control_writer", control_->guid()}};
+                 {"partition_grace_s", scene_.faults.partition_grace}, {"control_writer", control_->guid()},
+                 {"participants_per_host", hosts_.participants_per_host}};
     if (r.type == hostrun::kGroupType) request["members"] = r.members;
+    request["files"] = agents_->send_files(r.address, files_of(scene_, r.members));  // the FMUs travel with the run
     r.request = request.dump();
   }
   local_ = std::make_unique<ProcessNodeHost>(std::move(local));
@@ -345,7 +347,8 @@ int Run::connect() {
   if (hosts_.multi_host) {
     // The hosts' interfaces and unicast peers for both vendors, generated from the scene,
     // for the launcher, its recorder and the local nodes (the agents write their own).
-    set_environment(write_unicast_dds_files(run_dir_ + "/dds", {hosts_.launcher_address, hosts_.peers, lease_for(scene_)}));
+    set_environment(write_unicast_dds_files(run_dir_ + "/dds", {hosts_.launcher_address, hosts_.peers, lease_for(scene_),
+                                                                hosts_.participants_per_host}));
   } else {
     configure_dds_environment();
   }
@@ -364,17 +367,26 @@ int Run::connect() {
   control_ = participant_->create_control_writer();
   status_ = participant_->create_status_reader();
   if (hosts_.multi_host) {
-    agents_ = std::make_unique<AgentClient>(*participant_, run_id_, run_dir_);
+    agents_ = std::make_unique<AgentClient>(open_agent_link(hosts_, *participant_, domain_, run_dir_), run_id_, run_dir_);
     std::vector<std::string> addresses;
     for (const auto& [node, address] : hosts_.remote)
       if (std::find(addresses.begin(), addresses.end(), address) == addresses.end()) addresses.push_back(address);
-    std::fprintf(stderr, "mechsim: multi-host run: launcher on %s (%s), waiting for the agents on %s\n",
-                 hosts_.launcher_host.c_str(), hosts_.launcher_address.c_str(), join(addresses, ", ").c_str());
+    std::fprintf(stderr, "mechsim: multi-host run: launcher on %s (%s), waiting for the agents on %s (%s)\n",
+                 hosts_.launcher_host.c_str(), hosts_.launcher_address.c_str(), join(addresses, ", ").c_str(),
+                 hosts_.over_ssh ? "over ssh" : "standing DDS agents");
     const auto missing = agents_->wait_for_agents(addresses, opt_.ready_timeout_s, [] { return g_interrupt.load() != 0; });
     if (!missing.empty()) {
-      std::fprintf(stderr, "mechsim launch: no mechsim agent answered from %s on domain %d within %g s: start "
-                           "`mechsim agent --domain %d --address ADDRESS --peers %s` on each of those hosts (docs/hosts.md)\n",
-                   join(missing, ", ").c_str(), domain_, opt_.ready_timeout_s, domain_, hosts_.launcher_address.c_str());
+      if (hosts_.over_ssh) {
+        for (const auto& a : missing) {
+          std::string why = agents_->problem(a);
+          if (why.empty()) why = "no answer within " + std::to_string(static_cast<int>(opt_.ready_timeout_s)) + " s";
+          std::fprintf(stderr, "mechsim launch: no mechsim agent answered over ssh from %s: %s (docs/hosts.md)\n", a.c_str(), why.c_str());
+        }
+      } else {
+        std::fprintf(stderr, "mechsim launch: no mechsim agent answered from %s on domain %d within %g s: start "
+                             "`mechsim agent --domain %d --address ADDRESS --peers %s` on each of those hosts (docs/hosts.md)\n",
+                     join(missing, ", ").c_str(), domain_, opt_.ready_timeout_s, domain_, hosts_.launcher_address.c_str());
+      }
       return 1;
     }
   }

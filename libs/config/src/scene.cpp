@@ -388,8 +388,19 @@ void parse_faults_section(Scene& scene) {
   }
 }
 
-// `hosts: {name: {address}}`.
-void parse_hosts(Scene& scene) {
+// `[user@]host` for ssh: never an option (a leading '-'), no spaces or shell characters.
+bool valid_ssh_target(const std::string& s) {
+  const auto at = s.find('@');
+  const std::string user = at == std::string::npos ? "" : s.substr(0, at);
+  const std::string host = at == std::string::npos ? s : s.substr(at + 1);
+  if (at != std::string::npos && (user.empty() || user.front() == '-')) return false;
+  for (char c : user)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.')) return false;
+  return valid_host_address(host);
+}
+
+// `hosts: {name: {address, control, ssh, ssh_config, mechsim}}` (docs/hosts.md).
+void parse_hosts(Scene& scene, const std::vector<std::string>& overrides) {
   auto hosts = scene.root.optional_child("hosts");
   if (!hosts) return;
   if (!hosts->is_map() || hosts->size() == 0) hosts->fail("expected a map of machines (name: {address: 10.0.0.2 or a host name})");
@@ -397,12 +408,28 @@ void parse_hosts(Scene& scene) {
     ConfigNode h = hosts->child(name);
     if (!valid_name(name)) h.fail("expected a host name of letters, digits and '_'");
     if (!h.is_map()) h.fail("expected {address: an IPv4 address or a host name}");
-    h.allow_only({"address"});
+    h.allow_only({"address", "control", "ssh", "ssh_config", "mechsim"});
     HostSpec spec{name, h.string("address"), h.path()};
     if (!valid_host_address(spec.address))
       h.child("address").fail("expected an IPv4 address (10.0.0.2) or a host name (letters, digits, '-' and '.'), got '" + spec.address + "'");
     for (const auto& other : scene.hosts)
       if (other.address == spec.address) h.child("address").fail("expected each host once: " + other.key_path + " has the same address");
+    if (h.has("control")) spec.control = h.choice("control", {"ssh", "dds_agent"});
+    if (h.has("ssh")) {
+      spec.ssh = h.string("ssh");
+      if (!valid_ssh_target(spec.ssh)) h.child("ssh").fail("expected [user@]host for ssh (letters, digits, '-', '.', '_'), got '" + spec.ssh + "'");
+    }
+    if (h.has("ssh_config")) {
+      const std::string dotted = "hosts." + name + ".ssh_config";
+      spec.ssh_config = absolute_scene_path(scene, h.string("ssh_config"), dotted, overrides);
+      scene.root.set_override(dotted, spec.ssh_config);
+    }
+    if (h.has("mechsim")) {
+      spec.mechsim = h.string("mechsim");
+      if (spec.mechsim.empty() || spec.mechsim[0] != '/') h.child("mechsim").fail("expected the absolute path of mechsim on that host, got '" + spec.mechsim + "'");
+    }
+    if (spec.control == "dds_agent" && (h.has("ssh") || h.has("ssh_config")))
+      h.fail("expected ssh keys only with control: ssh (control: dds_agent reaches the host's standing DDS agent)");
     scene.hosts.push_back(spec);
   }
   // The agents and the nodes they start would need identities of their own: not done yet.
@@ -680,7 +707,7 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   parse_faults_section(scene);
   scene.design = root.optional_child("design");
   if (auto rec = root.optional_child("record")) scene.record = parse_record(*rec);
-  parse_hosts(scene);
+  parse_hosts(scene, overrides);
   parse_participants(scene, overrides, scene_process_realtime);
   parse_connections(scene);
   parse_compare(scene);

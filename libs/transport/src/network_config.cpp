@@ -21,7 +21,7 @@ std::string cyclone_unicast_config(const UnicastNetwork& network) {
          "    </General>\n"
          "    <Discovery>\n"
          "      <ParticipantIndex>auto</ParticipantIndex>\n"
-         "      <MaxAutoParticipantIndex>" + std::to_string(kMaxParticipantsPerHost - 1) + "</MaxAutoParticipantIndex>\n"
+         "      <MaxAutoParticipantIndex>" + std::to_string(network.participants_per_host - 1) + "</MaxAutoParticipantIndex>\n"
          "      <Peers>\n" + peers +
          "      </Peers>\n"
          "      <LeaseDuration>" + std::to_string(static_cast<int>(std::ceil(network.lease_s * 1000))) + "ms</LeaseDuration>\n"
@@ -54,7 +54,7 @@ std::string fastdds_unicast_profile(const UnicastNetwork& network) {
          "        <interfaceWhiteList>\n"
          "          <address>" + network.address + "</address>\n"
          "        </interfaceWhiteList>\n"
-         "        <maxInitialPeersRange>" + std::to_string(kMaxParticipantsPerHost) + "</maxInitialPeersRange>\n"
+         "        <maxInitialPeersRange>" + std::to_string(network.participants_per_host) + "</maxInitialPeersRange>\n"
          "      </transport_descriptor>\n"
          "    </transport_descriptors>\n"
          "    <participant profile_name=\"mechsim_hosts\" is_default_profile=\"true\">\n"

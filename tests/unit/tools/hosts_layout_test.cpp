@@ -33,6 +33,41 @@ TEST(HostLayout, TheLauncherFindsItsOwnHostAndTheRemoteParticipants) {
   EXPECT_EQ(layout.peers, (std::vector<std::string>{"127.0.0.1", "10.255.255.1"}));
 }
 
+// Over ssh by default; the ssh keys are carried as written (ssh_config made absolute), and a
+// `[user@]host` that could be read as an ssh option is refused naming the key.
+TEST(HostLayout, RemoteHostsAreReachedOverSshByDefault) {
+  const HostLayout layout = plan_hosts(scene_with_hosts(
+      "  here: {address: 127.0.0.1}\n  far: {address: 10.255.255.1, ssh: op@rtbox, ssh_config: /etc/mechsim/ssh_config}\n", "far"));
+  EXPECT_TRUE(layout.over_ssh);
+  ASSERT_EQ(layout.remote_hosts.count("10.255.255.1"), 1u);
+  EXPECT_EQ(layout.remote_hosts.at("10.255.255.1").ssh, "op@rtbox");
+  EXPECT_EQ(layout.remote_hosts.at("10.255.255.1").ssh_config, "/etc/mechsim/ssh_config");
+  EXPECT_EQ(layout.participants_per_host, transport::kMaxParticipantsPerHost);  // 2 participants: the default 24
+  const HostLayout daemon = plan_hosts(scene_with_hosts("  here: {address: 127.0.0.1}\n  far: {address: 10.255.255.1, control: dds_agent}\n", "far"));
+  EXPECT_FALSE(daemon.over_ssh);
+  for (const std::string target : {"-oProxyCommand=sh", "op@-x", "op@rt box", "@rtbox"}) {
+    try {
+      scene_with_hosts("  here: {address: 127.0.0.1}\n  far: {address: 10.255.255.1, ssh: '" + target + "'}\n", "far");
+      FAIL() << "accepted ssh target '" << target << "'";
+    } catch (const config::ConfigError& e) {
+      EXPECT_EQ(e.key_path(), "hosts.far.ssh") << target;
+    }
+  }
+}
+
+// The participant indices of a run: the most participants on one host plus 4, at least 24.
+TEST(HostLayout, ParticipantsPerHostFollowTheMostOnOneHost) {
+  config::Scene scene;
+  for (int i = 0; i < 28; ++i) scene.participants.push_back({.name = "p" + std::to_string(i), .type = "follower", .host = "b"});
+  for (int i = 0; i < 5; ++i) scene.participants.push_back({.name = "q" + std::to_string(i), .type = "follower"});
+  EXPECT_EQ(participants_per_host(scene, "a"), 32);
+  scene.participants.resize(10);
+  EXPECT_EQ(participants_per_host(scene, "a"), 24);
+  const transport::UnicastNetwork network{"10.0.0.1", {"10.0.0.1", "10.0.0.2"}, 5.0, 32};
+  EXPECT_NE(transport::cyclone_unicast_config(network).find("<MaxAutoParticipantIndex>31</MaxAutoParticipantIndex>"), std::string::npos);
+  EXPECT_NE(transport::fastdds_unicast_profile(network).find("<maxInitialPeersRange>32</maxInitialPeersRange>"), std::string::npos);
+}
+
 TEST(HostLayout, ParticipantsOnTheLaunchersHostMakeASingleHostRun) {
   const HostLayout layout = plan_hosts(scene_with_hosts("  here: {address: localhost}\n", "here"));
   EXPECT_FALSE(layout.multi_host);

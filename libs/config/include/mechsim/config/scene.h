@@ -82,6 +82,12 @@ struct HostSpec {
   std::string name;
   std::string address;   // an IPv4 address or a host name, as written
   std::string key_path;  // "hosts.rt_box"
+  // How the launcher reaches the host (docs/hosts.md): "ssh" (default) runs `mechsim agent
+  // --stdio` in an SSH session; "dds_agent" talks to a standing `mechsim agent` daemon.
+  std::string control = "ssh";
+  std::string ssh;         // [user@]host for ssh ("" = address)
+  std::string ssh_config;  // absolute: a file for ssh -F ("" = ssh's own, ~/.ssh/config)
+  std::string mechsim;     // absolute path of mechsim there ("" = the launcher's own path)
 };
 
 struct ParticipantSpec {

@@ -11,6 +11,13 @@
 
 namespace mechsim::transport {
 
+// The default number of DDS participants on one host of a multi-host run; unicast discovery
+// reaches the well-known ports of participant indices 0..n-1 on each peer. A run with more
+// on a host says so (UnicastNetwork::participants_per_host), up to kMostParticipantsPerHost:
+// index 119's data port is the last of a domain's 250 (7400 + 250 d + 11 + 2 i).
+inline constexpr int kMaxParticipantsPerHost = 24;
+inline constexpr int kMostParticipantsPerHost = 120;
+
 struct UnicastNetwork {
   std::string address;              // this host's IPv4 address on the run's network
   std::vector<std::string> peers;   // every host's IPv4 address (this one may be among them)
@@ -18,11 +25,11 @@ struct UnicastNetwork {
   // survive (faults.partition_grace), or its endpoints are dropped and what was written in
   // the meantime is lost for good.
   double lease_s = 5.0;
+  // DDS participants one host may hold (participant indices 0..n-1; the same on every host
+  // of a run, since each probes that many ports on its peers): hostrun::participants_per_host.
+  int participants_per_host = kMaxParticipantsPerHost;
 };
 
-// Most DDS participants on one host of a multi-host run; unicast discovery reaches the
-// well-known ports of participant indices 0..kMaxParticipantsPerHost-1 on each peer.
-inline constexpr int kMaxParticipantsPerHost = 24;
 
 // A CYCLONEDDS_URI document: <Interfaces><NetworkInterface address=.../>, AllowMulticast
 // false, ParticipantIndex auto, Peers, the lease, fast repair of lost samples.
