@@ -17,6 +17,7 @@ packages=(
   libzstd-dev liblz4-dev                  # MCAP chunk compression
   libzip-dev libpugixml-dev               # FMU import: the archive and modelDescription.xml
   openssl                                 # `mechsim security init` (docs/security.md)
+  pybind11-dev python3-dev python3-numpy  # the Python package `mechsim` (docs/python.md)
 )
 case "${1:-}" in
   "") ;;
@@ -25,6 +26,7 @@ case "${1:-}" in
       libgtest-dev libbenchmark-dev       # tests, benchmarks
       iproute2 iptables                   # the multi-host test bed (tools/netns-hosts.sh)
       clang libclang-rt-14-dev            # sanitizer + libFuzzer build only (label fuzz, .ci/run)
+      python3-dask python3-distributed    # mechsim.sweep on a local Dask cluster (docs/python.md)
     )
     # node + npm run the third-party MCAP reader test; machines that already have a Node.js
     # (e.g. from NodeSource, whose nodejs conflicts with Debian's npm) keep theirs.
