@@ -3,6 +3,8 @@
 // NumPy arrays; long calls release the GIL, so that threads of one interpreter run points
 // side by side.
 #include <iostream>
+#include <mutex>
+#include <optional>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -14,6 +16,7 @@
 #include "mechsim/cosim/scene_plan.h"
 #include "point_row.h"
 #include "scene_override.h"
+#include "stdout_to_dev_null.h"
 #include "sweep.h"
 
 namespace py = pybind11;
@@ -21,6 +24,34 @@ using nlohmann::json;
 
 namespace mechsim::python {
 namespace {
+
+// The nodes' "done: ..." lines kept off a notebook's stdout while any run of this process
+// goes on: one redirection for all threads (each its own would restore another's /dev/null).
+class QuietNodes {
+ public:
+  QuietNodes() {
+    std::lock_guard<std::mutex> l(mutex());
+    if (count()++ == 0) silence().emplace();
+  }
+  ~QuietNodes() {
+    std::lock_guard<std::mutex> l(mutex());
+    if (--count() == 0) silence().reset();
+  }
+
+ private:
+  static std::mutex& mutex() {
+    static std::mutex m;
+    return m;
+  }
+  static int& count() {
+    static int n = 0;
+    return n;
+  }
+  static std::optional<tools::StdoutToDevNull>& silence() {
+    static std::optional<tools::StdoutToDevNull> s;
+    return s;
+  }
+};
 
 std::vector<std::string> overrides_of(const std::vector<std::string>& sets) {
   std::vector<std::string> out;
@@ -59,6 +90,7 @@ py::dict run(const std::string& path, const std::vector<std::string>& sets, cons
   sweep::SceneRun r;
   {
     py::gil_scoped_release release;
+    const QuietNodes quiet;
     r = sweep::run_scene(path, overrides, run_dir);
   }
   const json row = sweep::point_row(sweep::Point{}, r);
@@ -90,6 +122,7 @@ std::string run_point(const std::string& scene, const std::vector<std::string>& 
                       const std::string& point_dir) {
   const sweep::Point p = sweep::point_from_json(json::parse(point));
   py::gil_scoped_release release;
+  const QuietNodes quiet;
   return sweep::run_point(scene, overrides, p, point_dir).dump();
 }
 

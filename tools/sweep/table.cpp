@@ -99,7 +99,11 @@ std::vector<std::string> write_plots(const std::string& dir, const std::string& 
       plot::Panel panel;
       panel.title = c;
       panel.xlabel = spec.key + (spec.unit.empty() ? "" : " [" + spec.unit + "]");
-      panel.ylabel = c == "worst_max_rel_error" ? "worst max error / range" : c;
+      // The title names the figure; the axis its quantity ("rise_time_s", or the stat's value).
+      const std::string quantity = c.substr(c.rfind(')') + 1);
+      panel.ylabel = c == "worst_max_rel_error" ? "worst max error / range"
+                     : quantity.empty()        ? c.substr(0, c.find('('))
+                                               : quantity.substr(1);
       panel.logx = spec.log;
       panel.logy = c == "worst_max_rel_error";
       std::map<std::string, plot::Series> by_other;
@@ -107,11 +111,12 @@ std::vector<std::string> write_plots(const std::string& dir, const std::string& 
       for (const auto& r : done) {
         const double x = number_of(r, spec.key), y = number_of(r, c);
         if (!std::isfinite(x) || !std::isfinite(y) || (panel.logy && y <= 0)) continue;
-        const std::string label = lines ? specs[1 - k].key + " = " + r.value(other, "") : "points";
+        const std::string label = lines ? specs[1 - k].key + " = " + r.value(other, "") : grid ? "grid" : "samples";
         if (!by_other.count(label)) order.push_back(label);
         auto& s = by_other[label];
         s.label = label;
-        s.style = lines ? "linespoints" : "points";
+        // A line through a grid's values of one key; samples (or a grid of more keys) as a cloud.
+        s.style = grid && (lines || specs.size() == 1) ? "linespoints" : "points";
         s.x.push_back(x);
         s.y.push_back(y);
       }
