@@ -1,11 +1,11 @@
 """The package `mechsim` (docs/python.md): a scene loaded, checked, set and run in process."""
 import os
-import sys
 import tempfile
 
 import numpy as np
 
 import mechsim
+from script_tests import run_tests
 
 SCENES = os.path.join(os.environ["MECHSIM_SOURCE_DIR"], "config", "scenes")
 CAM_PRESS = os.path.join(SCENES, "cam_press.yaml")
@@ -53,8 +53,4 @@ def test_run_in_process():
 
 
 if __name__ == "__main__":
-    for name, fn in list(globals().items()):
-        if name.startswith("test_"):
-            fn()
-            print(f"{name}: passed")
-    sys.exit(0)
+    run_tests(globals())

@@ -6,12 +6,12 @@ import glob
 import json
 import os
 import subprocess
-import sys
 import tempfile
 
 import numpy as np
 
 import mechsim
+from script_tests import run_tests
 
 BIN = os.environ["MECHSIM_BIN_DIR"]
 CAM_PRESS = os.path.join(os.environ["MECHSIM_SOURCE_DIR"], "config", "scenes", "cam_press.yaml")
@@ -86,8 +86,4 @@ def test_mcap_into_arrays():
 
 
 if __name__ == "__main__":
-    for name, fn in list(globals().items()):
-        if name.startswith("test_"):
-            fn()
-            print(f"{name}: passed")
-    sys.exit(0)
+    run_tests(globals())

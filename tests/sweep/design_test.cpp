@@ -21,7 +21,7 @@ TEST(SweepDesign, ListKeepsEachEntryAsTheSceneGetsIt) {
 
 // (lo (n-1-i) + hi i)/(n-1): integers of the range come out exactly, and both ends are the typed ones.
 TEST(SweepDesign, LinearRangeIsEvenAndExactAtTheEnds) {
-  const VarySpec s = parse_vary("servo.gain=1..4:4");
+  const VarySpec s = parse_vary("servo.position_gain=1..4:4");
   EXPECT_EQ(range_values(s), (std::vector<double>{1, 2, 3, 4}));
   const VarySpec t = parse_vary("x=0.1..0.3:3");
   const auto v = range_values(t);
@@ -73,11 +73,11 @@ TEST(SweepDesign, BadSpecsAreRefusedNamingTheKey) {
     }
     return std::string("accepted");
   };
-  EXPECT_NE(message("servo.gain=1..4:1").find("empty range"), std::string::npos);
-  EXPECT_NE(message("servo.gain=4..4:3").find("empty range"), std::string::npos);
-  EXPECT_NE(message("servo.gain=0..4:3:log").find("log range"), std::string::npos);
-  EXPECT_NE(message("servo.gain=").find("--vary servo.gain: no values"), std::string::npos);
-  EXPECT_NE(message("servo.gain").find("expected KEY=SPEC"), std::string::npos);
+  EXPECT_NE(message("servo.position_gain=1..4:1").find("empty range"), std::string::npos);
+  EXPECT_NE(message("servo.position_gain=4..4:3").find("empty range"), std::string::npos);
+  EXPECT_NE(message("servo.position_gain=0..4:3:log").find("log range"), std::string::npos);
+  EXPECT_NE(message("servo.position_gain=").find("--vary servo.position_gain: no values"), std::string::npos);
+  EXPECT_NE(message("servo.position_gain").find("expected KEY=SPEC"), std::string::npos);
   EXPECT_NE(message("x=1 s..4 N:3").find("not of one dimension"), std::string::npos);
   EXPECT_NE(message("x=1..4:three").find("whole count"), std::string::npos);
   EXPECT_NE(message("x=1..4:3:lin").find("'log'"), std::string::npos);

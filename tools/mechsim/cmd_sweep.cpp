@@ -16,7 +16,7 @@ void add_sweep_command(CLI::App& app, int& exit_code) {
   add_scene_args(cmd, *args);
   cmd->add_option("--vary", opt->vary,
                   "KEY=SPEC, repeatable, for any key --set takes: a list 'a,b,c' ('follower.spring.preload=100 N,150 N'), "
-                  "'lo..hi:n' or 'lo..hi:n:log' with units as in scenes ('servo.gain=1..4:4')")
+                  "'lo..hi:n' or 'lo..hi:n:log' with units as in scenes ('servo.position_gain=20..80 1/s:7')")
       ->required();
   cmd->add_option("--method", *method, "grid (every combination), lhs (Latin hypercube) or random")
       ->capture_default_str()

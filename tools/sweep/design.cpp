@@ -95,7 +95,7 @@ VarySpec parse_vary(const std::string& text) {
   VarySpec spec;
   spec.key = trim(eq == std::string::npos ? "" : text.substr(0, eq));
   if (eq == std::string::npos || spec.key.empty())
-    throw DesignError("--vary '" + text + "': expected KEY=SPEC, e.g. 'servo.gain=1..4:4' or 'follower.spring.preload=100 N,150 N'");
+    throw DesignError("--vary '" + text + "': expected KEY=SPEC, e.g. 'servo.position_gain=20..80 1/s:7' or 'follower.spring.preload=100 N,150 N'");
   const std::string body = trim(text.substr(eq + 1));
   const std::string where = "--vary " + spec.key;
   if (body.empty()) throw DesignError(where + ": no values (expected a list 'a,b' or a range 'lo..hi:n')");

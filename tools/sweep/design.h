@@ -26,7 +26,7 @@ class DesignError : public std::invalid_argument {
 };
 
 struct VarySpec {
-  std::string key;                 // as written ("servo.gain", "time.step")
+  std::string key;                 // as written ("servo.position_gain", "time.step")
   bool is_range = false;
   std::vector<std::string> list;   // a list's entries
   double lo = 0, hi = 0;           // a range's ends, in the range's unit

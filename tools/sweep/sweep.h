@@ -43,8 +43,8 @@ struct Study {
 };
 Study plan_study(const SweepOptions& options);
 
-// Every point's scene loaded and planned before any runs: the reasons of the points the
-// scene refuses (index -> reason, the rest absent). Throws DesignError when a varied key is
+// Every point's scene (of a design over 2000 points, 2000 spread over it) loaded and planned
+// before any runs: the reasons of the points the scene refuses (index -> reason, the rest absent). Throws DesignError when a varied key is
 // not one the scene has (every point would be refused for it) or every point is refused.
 std::map<int, std::string> check_points(const SweepOptions& options, const Study& study);
 
