@@ -9,13 +9,17 @@ executor (a Dask distributed Client included).
 
 import json
 import os
+import subprocess
 import tempfile
 
 import numpy as np
 
 from . import _core
 
-__all__ = ["Scene", "Result", "Table", "load", "run", "read_mcap", "sweep"]
+__all__ = ["Scene", "Result", "Launched", "Table", "load", "run", "launch", "read_mcap", "sweep"]
+
+# build/bin/mechsim beside build/python/mechsim/ (the package is laid out in the build tree).
+MECHSIM = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, os.pardir, "bin", "mechsim")
 
 
 class Scene:
@@ -87,6 +91,52 @@ def run(path, set=None, run_dir=None):
         run_dir = tempfile.mkdtemp(prefix="mechsim-run-")
     run_dir = os.fspath(run_dir)
     return Result(_core.run(os.fspath(path), list(set or []), run_dir), run_dir)
+
+
+class Launched:
+    """A `mechsim launch` run (processes over DDS): its summary and the compared signals.
+
+    exit_code; summary (the run's summary.json, None when the scene was refused); t and
+    signals[name] = {"cosim", "reference"} (arrays, from the run folder's signals.csv);
+    run_dir; output (what the command printed).
+    """
+
+    def __init__(self, exit_code, summary, output):
+        self.exit_code = exit_code
+        self.summary = summary
+        self.output = output
+        self.t = np.empty(0)
+        self.signals = {}
+        self.run_dir = None
+        csv = (summary or {}).get("files", {}).get("signals_csv")
+        if csv and os.path.exists(csv):
+            self.run_dir = os.path.dirname(csv)
+            with open(csv) as f:
+                header = f.readline().strip().split(",")
+            data = np.loadtxt(csv, delimiter=",", skiprows=1, ndmin=2)
+            self.t = data[:, 0]
+            for i, name in enumerate(header[1:], start=1):
+                if not name.endswith(".reference"):
+                    self.signals[name] = {"cosim": data[:, i], "reference": data[:, header.index(name + ".reference")]}
+
+    def __repr__(self):
+        return f"Launched(exit_code={self.exit_code}, run_dir={self.run_dir!r})"
+
+
+def launch(path, set=None, runs_dir="runs", args=()):
+    """Runs the scene as `mechsim launch` does (its processes over DDS); args: more of its flags."""
+    cmd = [MECHSIM, "launch", os.fspath(path), "--runs-dir", os.fspath(runs_dir), "--no-progress"]
+    for s in set or []:
+        cmd += ["--set", s]
+    with tempfile.TemporaryDirectory(prefix="mechsim-launch-") as tmp:
+        summary_path = os.path.join(tmp, "summary.json")
+        done = subprocess.run(cmd + ["--json", summary_path] + list(args), stdout=subprocess.PIPE,
+                              stderr=subprocess.STDOUT, text=True)
+        summary = None
+        if os.path.exists(summary_path):
+            with open(summary_path) as f:
+                summary = json.load(f)
+    return Launched(done.returncode, summary, done.stdout)
 
 
 def read_mcap(path):

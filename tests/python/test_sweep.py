@@ -68,21 +68,26 @@ def test_same_table_everywhere():
         assert comparable(json.load(f)["rows"]) == rows
 
 
-def test_mcap_into_arrays():
+def test_launch_and_mcap_into_arrays():
     runs = os.path.join(WORK, "runs")
-    subprocess.run([os.path.join(BIN, "mechsim"), "launch", CAM_PRESS, "--set", "time.end=0.1 s", "--set", "record=true",
-                    "--runs-dir", runs, "--no-plot", "--no-progress"], check=True, timeout=120,
-                   stdout=subprocess.DEVNULL)
+    launched = mechsim.launch(CAM_PRESS, ["time.end=0.1 s", "record=true"], runs_dir=runs, args=["--no-plot"])
+    assert launched.exit_code == 0, launched.output
     (bag,) = glob.glob(os.path.join(runs, "*", "recording.mcap"))
     topics = mechsim.read_mcap(bag)
     follower = topics["follower/state"]
     steps = follower["step"]
     assert np.all(np.diff(steps) == 1), "one sample per step, in order"
     assert np.allclose(follower["t"], steps * 1e-3, rtol=0, atol=1e-12)
-    # The in-process run computes what the DDS processes computed, bit for bit.
+    # The in-process run computes what the DDS processes computed, bit for bit: in the
+    # recording, and in the launch's signals.csv (written with 17 digits: exact).
     run = mechsim.run(CAM_PRESS, ["time.end=0.1 s"])
     k = steps.astype(int)
     assert np.array_equal(follower["contact_force"], run.signals["follower.contact_force"]["cosim"][k])
+    assert np.array_equal(launched.t, run.t)
+    for name, s in run.signals.items():
+        assert np.array_equal(launched.signals[name]["cosim"], s["cosim"]), name
+        assert np.array_equal(launched.signals[name]["reference"], s["reference"]), name
+    assert launched.summary["signals"]["follower.drive_torque"]["max_abs_error"] == run.errors["follower.drive_torque"]["max_abs_error"]
 
 
 if __name__ == "__main__":
