@@ -112,6 +112,25 @@ TEST_F(SweepGrid, TableHasEveryPointRefusedOnesWithTheirReason) {
   EXPECT_NE(r3.output.find("holds another study"), std::string::npos) << r3.output;
 }
 
+// The NC loop beyond its stability limit (about 110 us: docs/nc-loop.md) diverges: a row
+// with the step it stopped at, and the sweep goes on to its other point.
+TEST_F(SweepGrid, ADivergingPointIsARowWithItsReason) {
+  const std::string nc = std::string(MECHSIM_SOURCE_DIR) + "/config/scenes/nc_slide_loop.yaml";
+  const CommandResult r = run({kMechsim, "sweep", nc, "--set", "time.end=0.05 s", "--vary", "time.step=25 us,200 us", "--out",
+                               (dir_ / "nc").string(), "--no-plot"},
+                              (dir_ / "nc.log").string(), 240);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const json rows = read_json((dir_ / "nc/sweep.json").string())["rows"];
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[0]["outcome"], "ok") << rows[0]["reason"];
+  EXPECT_EQ(rows[0]["steps"], 2000);  // 0.05 s at 25 us
+  EXPECT_EQ(rows[1]["outcome"], "diverged");
+  EXPECT_NE(rows[1]["reason"].get<std::string>().find("diverged"), std::string::npos) << rows[1]["reason"];
+  EXPECT_GT(rows[1]["steps"].get<int>(), 0);
+  EXPECT_LT(rows[1]["steps"].get<int>(), 250);  // stopped before the end at 200 us
+  EXPECT_TRUE(rows[1]["worst_max_rel_error"].is_null());
+}
+
 TEST_F(SweepGrid, BadInputIsRefusedBeforeAnyPointRuns) {
   const auto refused = [&](const std::vector<std::string>& args, const std::string& expected) {
     std::vector<std::string> a = args;
