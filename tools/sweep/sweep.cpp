@@ -136,7 +136,10 @@ int run_sweep(const SweepOptions& o, std::ostream& out) {
     std::fprintf(stderr, "mechsim sweep: %s: %s\n", o.scene_path.c_str(), e.what());
     return 2;
   }
-  for (const auto& [index, why] : refused) std::fprintf(stderr, "mechsim sweep: point %d is refused: %s\n", index, why.c_str());
+  int told = 0;  // the first few, so that a design refused in large parts says so without a page a point
+  for (const auto& [index, why] : refused)
+    if (++told <= 5) std::fprintf(stderr, "mechsim sweep: point %d is refused: %s\n", index, why.c_str());
+  if (told > 5) std::fprintf(stderr, "mechsim sweep: and %d more points are refused (their rows say why)\n", told - 5);
 
   std::vector<json> rows;
   std::vector<const Point*> to_run;
