@@ -91,8 +91,9 @@ TEST_F(SweepGrid, TableHasEveryPointRefusedOnesWithTheirReason) {
   int lines = 0;
   while (std::getline(csv, line)) ++lines;
   EXPECT_EQ(lines, 5);
-  if (std::system("command -v gnuplot >/dev/null 2>&1") == 0)
+  if (std::system("command -v gnuplot >/dev/null 2>&1") == 0) {
     EXPECT_TRUE(fs::exists(dir_ / "out/plots/follower.spring.preload.png")) << r.output;
+  }
 
   // --resume: every point is finished, none runs again; the table is the same.
   const auto summary = dir_ / "out/points/00000/summary.json";
