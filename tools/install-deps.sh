@@ -18,6 +18,7 @@ packages=(
   libzip-dev libpugixml-dev               # FMU import: the archive and modelDescription.xml
   openssl                                 # `mechsim security init` (docs/security.md)
   libwebsocketpp-dev libasio-dev          # the live server (header-only; docs/live.md)
+  pybind11-dev python3-dev python3-numpy  # the Python package `mechsim` (docs/python.md)
 )
 case "${1:-}" in
   "") ;;
@@ -27,6 +28,7 @@ case "${1:-}" in
       iproute2 iptables                   # the multi-host test bed (tools/netns-hosts.sh)
       openssh-server openssh-client       # its sshd per host: runs over ssh (tests/hosts, docs/hosts.md)
       clang libclang-rt-14-dev            # sanitizer + libFuzzer build only (label fuzz, .ci/run)
+      python3-dask python3-distributed    # mechsim.sweep on a local Dask cluster (docs/python.md)
     )
     # node + npm run the third-party MCAP reader test; machines that already have a Node.js
     # (e.g. from NodeSource, whose nodejs conflicts with Debian's npm) keep theirs.

@@ -1,7 +1,5 @@
 #include "bench.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -20,6 +18,7 @@
 #include "elapsed.h"
 #include "mechsim/config/units.h"
 #include "mechsim/cosim/scene_plan.h"
+#include "stdout_to_dev_null.h"
 
 namespace mechsim::bench {
 
@@ -258,32 +257,6 @@ void Bench::run_sweep() {
   }
 }
 
-// The nodes print their own lines ("done: ...") on stdout: this keeps them out of the
-// table while it lives.
-class StdoutToDevNull {
- public:
-  StdoutToDevNull() {
-    std::fflush(stdout);
-    saved_ = dup(1);
-    if (FILE* null = std::fopen("/dev/null", "w")) {
-      dup2(fileno(null), 1);
-      std::fclose(null);
-    }
-  }
-  ~StdoutToDevNull() {
-    std::fflush(stdout);
-    if (saved_ >= 0) {
-      dup2(saved_, 1);
-      close(saved_);
-    }
-  }
-  StdoutToDevNull(const StdoutToDevNull&) = delete;
-  StdoutToDevNull& operator=(const StdoutToDevNull&) = delete;
-
- private:
-  int saved_ = -1;
-};
-
 // The bench in the order it runs: the scene, the variants and the grid; the fixed-H runs
 // (with the DDS spot checks), the adaptive points; the figures drawn from them; the table,
 // the plots and the JSON.
@@ -296,7 +269,7 @@ int Bench::run() {
   choose_dds_checks();
   json orders, ten_x, adaptive_vs_fixed_json;
   {
-    const StdoutToDevNull quiet_nodes;
+    const tools::StdoutToDevNull quiet_nodes;
     run_sweep();
     choose_adaptive_points();
     run_adaptive_points();

@@ -39,5 +39,6 @@ void add_agent_command(CLI::App& app, int& exit_code);
 void add_security_command(CLI::App& app, int& exit_code);
 void add_fmu_command(CLI::App& app, int& exit_code);
 void add_scene_command(CLI::App& app, int& exit_code);
+void add_sweep_command(CLI::App& app, int& exit_code);
 
 }  // namespace mechsim::tools

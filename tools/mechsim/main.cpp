@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   mechsim::tools::add_security_command(app, exit_code);
   mechsim::tools::add_fmu_command(app, exit_code);
   mechsim::tools::add_scene_command(app, exit_code);
+  mechsim::tools::add_sweep_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

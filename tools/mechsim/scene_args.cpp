@@ -1,4 +1,5 @@
 #include "commands.h"
+#include "scene_override.h"
 
 namespace mechsim::tools {
 
@@ -15,16 +16,7 @@ void add_scene_args(CLI::App* cmd, SceneArgs& a) {
 
 std::vector<std::string> SceneArgs::overrides() const {
   std::vector<std::string> out;
-  for (const auto& s : sets) {
-    const std::string key = s.substr(0, s.find('='));
-    const std::string head = key.substr(0, key.find('.'));
-    // Keys that start with a top-level scene section are taken as they are; anything else
-    // is <participant>.<param>.
-    static const char* const sections[] = {"participants", "time", "dds", "hosts", "faults", "realtime", "record", "design", "report", "compare"};
-    bool scene_key = key.find('.') == std::string::npos || head.rfind("connections", 0) == 0;
-    for (const char* section : sections) scene_key = scene_key || head == section;
-    out.push_back(scene_key ? s : "participants." + head + ".params" + s.substr(head.size()));
-  }
+  for (const auto& s : sets) out.push_back(scene_override(s));
   if (!step.empty()) out.push_back("time.step=" + step);
   if (!end.empty()) out.push_back("time.end=" + end);
   if (!mode.empty()) out.push_back("mode=" + mode);
