@@ -1,7 +1,7 @@
 #include "mechsim/fmi/co_simulation_block.h"
 
 #include "exchanged_variables.h"
-#include "mechsim/fmi/instantiation.h"
+#include "lazy_instance.h"
 #include "saved_state.h"
 
 namespace mechsim::fmi {
@@ -19,21 +19,17 @@ CoSimulationBlock::CoSimulationBlock(std::shared_ptr<const FmuArchive> archive_i
   for (const Variable* v : outputs_) declare_output(v->name, port_unit(*v));  // held: no feedthrough
   can_save_state_ = missing_state_capabilities(archive.description(), InterfaceKind::co_simulation).empty();
   held_.resize(outputs_.size());
-  instantiate_ = [this, parameters, t0, t_stop] {
-    fmu_ = initialize(*archive_, InterfaceKind::co_simulation, parameters, t0, t_stop);
-    for (std::size_t i = 0; i < outputs_.size(); ++i) held_[i] = get_value(*fmu_, *outputs_[i]);
-  };
-  if (block_instantiation() == Instantiation::when_made) instantiate_now();
+  fmu_ = std::make_unique<LazyInstance>(
+      [this, parameters, t0, t_stop] { return initialize(*archive_, InterfaceKind::co_simulation, parameters, t0, t_stop); },
+      [this](FmuInstance& fmu) {
+        for (std::size_t i = 0; i < outputs_.size(); ++i) held_[i] = get_value(fmu, *outputs_[i]);
+      });
+  fmu_->make_unless_deferred();
 }
 
-void CoSimulationBlock::instantiate_now() const {
-  if (!fmu_) instantiate_();
-}
-
-FmuInstance& CoSimulationBlock::fmu() const {
-  instantiate_now();
-  return *fmu_;
-}
+CoSimulationBlock::~CoSimulationBlock() = default;
+void CoSimulationBlock::instantiate_now() const { fmu_->get(); }
+FmuInstance& CoSimulationBlock::fmu() const { return fmu_->get(); }
 
 void CoSimulationBlock::calc_outputs(double, std::span<const double>, std::span<const double>,
                                      std::span<double> y) const {

@@ -5,7 +5,7 @@
 #include <limits>
 
 #include "exchanged_variables.h"
-#include "mechsim/fmi/instantiation.h"
+#include "lazy_instance.h"
 #include "saved_state.h"
 
 namespace mechsim::fmi {
@@ -46,23 +46,19 @@ ModelExchangeBlock::ModelExchangeBlock(std::shared_ptr<const FmuArchive> archive
   can_save_state_ = missing_state_capabilities(md, InterfaceKind::model_exchange).empty();
 
   x0_.resize(static_cast<std::size_t>(num_states()));
-  instantiate_ = [this, parameters, t0, t_stop] {
-    fmu_ = initialize(*archive_, InterfaceKind::model_exchange, parameters, t0, t_stop);
-    take_update(fmu_->update_discrete_states(), t0);
-    fmu_->enter_continuous_time_mode();
-    fmu_->get_continuous_states(x0_);
-  };
-  if (block_instantiation() == Instantiation::when_made) instantiate_now();
+  fmu_ = std::make_unique<LazyInstance>(
+      [this, parameters, t0, t_stop] { return initialize(*archive_, InterfaceKind::model_exchange, parameters, t0, t_stop); },
+      [this, t0](FmuInstance& fmu) {
+        take_update(fmu.update_discrete_states(), t0);
+        fmu.enter_continuous_time_mode();
+        fmu.get_continuous_states(x0_);
+      });
+  fmu_->make_unless_deferred();
 }
 
-void ModelExchangeBlock::instantiate_now() const {
-  if (!fmu_) instantiate_();
-}
-
-FmuInstance& ModelExchangeBlock::fmu() const {
-  instantiate_now();
-  return *fmu_;
-}
+ModelExchangeBlock::~ModelExchangeBlock() = default;
+void ModelExchangeBlock::instantiate_now() const { fmu_->get(); }
+FmuInstance& ModelExchangeBlock::fmu() const { return fmu_->get(); }
 
 void ModelExchangeBlock::take_update(const DiscreteUpdate& update, double t) const {
   const FmuLabel& label = archive_->label();

@@ -29,6 +29,25 @@ fmi3Status unsupported(fmi3Instance c, const char* function, const char* why) { 
 
 }  // namespace
 
+// fmi3Get<Type> and fmi3Set<Type> of a variable type the FMU has none of.
+#define MECHSIM_FMI3_NO_VARIABLES_OF(Name, Type)                                                                  \
+  MECHSIM_FMI_EXPORT fmi3Status fmi3Get##Name(fmi3Instance c, const fmi3ValueReference[], size_t, Type[], size_t) {     \
+    return unsupported(c, "fmi3Get" #Name, "the FMU has no " #Name " variables (its variables are Float64)");          \
+  }                                                                                                                 \
+  MECHSIM_FMI_EXPORT fmi3Status fmi3Set##Name(fmi3Instance c, const fmi3ValueReference[], size_t, const Type[], size_t) { \
+    return unsupported(c, "fmi3Set" #Name, "the FMU has no " #Name " variables (its variables are Float64)");          \
+  }
+
+MECHSIM_FMI3_NO_VARIABLES_OF(Float32, fmi3Float32)
+MECHSIM_FMI3_NO_VARIABLES_OF(Int8, fmi3Int8)
+MECHSIM_FMI3_NO_VARIABLES_OF(UInt8, fmi3UInt8)
+MECHSIM_FMI3_NO_VARIABLES_OF(Int16, fmi3Int16)
+MECHSIM_FMI3_NO_VARIABLES_OF(UInt16, fmi3UInt16)
+MECHSIM_FMI3_NO_VARIABLES_OF(UInt32, fmi3UInt32)
+MECHSIM_FMI3_NO_VARIABLES_OF(Int64, fmi3Int64)
+MECHSIM_FMI3_NO_VARIABLES_OF(UInt64, fmi3UInt64)
+MECHSIM_FMI3_NO_VARIABLES_OF(String, fmi3String)
+
 MECHSIM_FMI_EXPORT fmi3Status fmi3ActivateModelPartition(fmi3Instance c, fmi3ValueReference, fmi3Float64) {
   return unsupported(c, "fmi3ActivateModelPartition", "the FMU offers no scheduled execution");
 }
@@ -62,18 +81,6 @@ MECHSIM_FMI_EXPORT fmi3Status fmi3GetContinuousStates(fmi3Instance c, fmi3Float6
 MECHSIM_FMI_EXPORT fmi3Status fmi3GetEventIndicators(fmi3Instance c, fmi3Float64[], size_t) {
   return unsupported(c, "fmi3GetEventIndicators", "the FMU offers co-simulation only (no <ModelExchange>)");
 }
-MECHSIM_FMI_EXPORT fmi3Status fmi3GetFloat32(fmi3Instance c, const fmi3ValueReference[], size_t, fmi3Float32[], size_t) {
-  return unsupported(c, "fmi3GetFloat32", "the FMU has no Float32 variables (its variables are Float64)");
-}
-MECHSIM_FMI_EXPORT fmi3Status fmi3GetInt16(fmi3Instance c, const fmi3ValueReference[], size_t, fmi3Int16[], size_t) {
-  return unsupported(c, "fmi3GetInt16", "the FMU has no Int16 variables (its variables are Float64)");
-}
-MECHSIM_FMI_EXPORT fmi3Status fmi3GetInt64(fmi3Instance c, const fmi3ValueReference[], size_t, fmi3Int64[], size_t) {
-  return unsupported(c, "fmi3GetInt64", "the FMU has no Int64 variables (its variables are Float64)");
-}
-MECHSIM_FMI_EXPORT fmi3Status fmi3GetInt8(fmi3Instance c, const fmi3ValueReference[], size_t, fmi3Int8[], size_t) {
-  return unsupported(c, "fmi3GetInt8", "the FMU has no Int8 variables (its variables are Float64)");
-}
 MECHSIM_FMI_EXPORT fmi3Status fmi3GetIntervalDecimal(fmi3Instance c, const fmi3ValueReference[], size_t, fmi3Float64[], fmi3IntervalQualifier[]) {
   return unsupported(c, "fmi3GetIntervalDecimal", "the FMU has no clocks and no event mode");
 }
@@ -98,21 +105,6 @@ MECHSIM_FMI_EXPORT fmi3Status fmi3GetShiftDecimal(fmi3Instance c, const fmi3Valu
 MECHSIM_FMI_EXPORT fmi3Status fmi3GetShiftFraction(fmi3Instance c, const fmi3ValueReference[], size_t, fmi3UInt64[], fmi3UInt64[]) {
   return unsupported(c, "fmi3GetShiftFraction", "the FMU has no clocks and no event mode");
 }
-MECHSIM_FMI_EXPORT fmi3Status fmi3GetString(fmi3Instance c, const fmi3ValueReference[], size_t, fmi3String[], size_t) {
-  return unsupported(c, "fmi3GetString", "the FMU has no String variables (its variables are Float64)");
-}
-MECHSIM_FMI_EXPORT fmi3Status fmi3GetUInt16(fmi3Instance c, const fmi3ValueReference[], size_t, fmi3UInt16[], size_t) {
-  return unsupported(c, "fmi3GetUInt16", "the FMU has no UInt16 variables (its variables are Float64)");
-}
-MECHSIM_FMI_EXPORT fmi3Status fmi3GetUInt32(fmi3Instance c, const fmi3ValueReference[], size_t, fmi3UInt32[], size_t) {
-  return unsupported(c, "fmi3GetUInt32", "the FMU has no UInt32 variables (its variables are Float64)");
-}
-MECHSIM_FMI_EXPORT fmi3Status fmi3GetUInt64(fmi3Instance c, const fmi3ValueReference[], size_t, fmi3UInt64[], size_t) {
-  return unsupported(c, "fmi3GetUInt64", "the FMU has no UInt64 variables (its variables are Float64)");
-}
-MECHSIM_FMI_EXPORT fmi3Status fmi3GetUInt8(fmi3Instance c, const fmi3ValueReference[], size_t, fmi3UInt8[], size_t) {
-  return unsupported(c, "fmi3GetUInt8", "the FMU has no UInt8 variables (its variables are Float64)");
-}
 MECHSIM_FMI_EXPORT fmi3Status fmi3GetVariableDependencies(fmi3Instance c, fmi3ValueReference, size_t[], fmi3ValueReference[], size_t[], fmi3DependencyKind[], size_t) {
   return unsupported(c, "fmi3GetVariableDependencies", "the dependencies are those of <ModelStructure>");
 }
@@ -124,18 +116,6 @@ MECHSIM_FMI_EXPORT fmi3Status fmi3SetClock(fmi3Instance c, const fmi3ValueRefere
 }
 MECHSIM_FMI_EXPORT fmi3Status fmi3SetContinuousStates(fmi3Instance c, const fmi3Float64[], size_t) {
   return unsupported(c, "fmi3SetContinuousStates", "the FMU offers co-simulation only (no <ModelExchange>)");
-}
-MECHSIM_FMI_EXPORT fmi3Status fmi3SetFloat32(fmi3Instance c, const fmi3ValueReference[], size_t, const fmi3Float32[], size_t) {
-  return unsupported(c, "fmi3SetFloat32", "the FMU has no Float32 variables (its variables are Float64)");
-}
-MECHSIM_FMI_EXPORT fmi3Status fmi3SetInt16(fmi3Instance c, const fmi3ValueReference[], size_t, const fmi3Int16[], size_t) {
-  return unsupported(c, "fmi3SetInt16", "the FMU has no Int16 variables (its variables are Float64)");
-}
-MECHSIM_FMI_EXPORT fmi3Status fmi3SetInt64(fmi3Instance c, const fmi3ValueReference[], size_t, const fmi3Int64[], size_t) {
-  return unsupported(c, "fmi3SetInt64", "the FMU has no Int64 variables (its variables are Float64)");
-}
-MECHSIM_FMI_EXPORT fmi3Status fmi3SetInt8(fmi3Instance c, const fmi3ValueReference[], size_t, const fmi3Int8[], size_t) {
-  return unsupported(c, "fmi3SetInt8", "the FMU has no Int8 variables (its variables are Float64)");
 }
 MECHSIM_FMI_EXPORT fmi3Status fmi3SetIntervalDecimal(fmi3Instance c, const fmi3ValueReference[], size_t, const fmi3Float64[]) {
   return unsupported(c, "fmi3SetIntervalDecimal", "the FMU has no clocks and no event mode");
@@ -149,23 +129,8 @@ MECHSIM_FMI_EXPORT fmi3Status fmi3SetShiftDecimal(fmi3Instance c, const fmi3Valu
 MECHSIM_FMI_EXPORT fmi3Status fmi3SetShiftFraction(fmi3Instance c, const fmi3ValueReference[], size_t, const fmi3UInt64[], const fmi3UInt64[]) {
   return unsupported(c, "fmi3SetShiftFraction", "the FMU has no clocks and no event mode");
 }
-MECHSIM_FMI_EXPORT fmi3Status fmi3SetString(fmi3Instance c, const fmi3ValueReference[], size_t, const fmi3String[], size_t) {
-  return unsupported(c, "fmi3SetString", "the FMU has no String variables (its variables are Float64)");
-}
 MECHSIM_FMI_EXPORT fmi3Status fmi3SetTime(fmi3Instance c, fmi3Float64) {
   return unsupported(c, "fmi3SetTime", "the FMU offers co-simulation only (no <ModelExchange>)");
-}
-MECHSIM_FMI_EXPORT fmi3Status fmi3SetUInt16(fmi3Instance c, const fmi3ValueReference[], size_t, const fmi3UInt16[], size_t) {
-  return unsupported(c, "fmi3SetUInt16", "the FMU has no UInt16 variables (its variables are Float64)");
-}
-MECHSIM_FMI_EXPORT fmi3Status fmi3SetUInt32(fmi3Instance c, const fmi3ValueReference[], size_t, const fmi3UInt32[], size_t) {
-  return unsupported(c, "fmi3SetUInt32", "the FMU has no UInt32 variables (its variables are Float64)");
-}
-MECHSIM_FMI_EXPORT fmi3Status fmi3SetUInt64(fmi3Instance c, const fmi3ValueReference[], size_t, const fmi3UInt64[], size_t) {
-  return unsupported(c, "fmi3SetUInt64", "the FMU has no UInt64 variables (its variables are Float64)");
-}
-MECHSIM_FMI_EXPORT fmi3Status fmi3SetUInt8(fmi3Instance c, const fmi3ValueReference[], size_t, const fmi3UInt8[], size_t) {
-  return unsupported(c, "fmi3SetUInt8", "the FMU has no UInt8 variables (its variables are Float64)");
 }
 MECHSIM_FMI_EXPORT fmi3Status fmi3UpdateDiscreteStates(fmi3Instance c, fmi3Boolean*, fmi3Boolean*, fmi3Boolean*, fmi3Boolean*, fmi3Boolean*, fmi3Float64*) {
   return unsupported(c, "fmi3UpdateDiscreteStates", "the FMU has no clocks and no event mode");

@@ -23,7 +23,6 @@
 // so the FMU is always stepped by Ts.
 #pragma once
 
-#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -33,6 +32,8 @@
 #include "mechsim/models/block.h"
 
 namespace mechsim::fmi {
+
+class LazyInstance;  // lazy_instance.h
 
 class CoSimulationBlock final : public models::Block {
  public:
@@ -51,12 +52,12 @@ class CoSimulationBlock final : public models::Block {
   // Loads, instantiates and initializes the FMU if it has not been yet (instantiation.h).
   void instantiate_now() const;
   const FmuArchive& archive() const { return *archive_; }
+  ~CoSimulationBlock() override;
 
  private:
   FmuInstance& fmu() const;
   std::shared_ptr<const FmuArchive> archive_;
-  std::function<void()> instantiate_;  // what the constructor would do, when it is deferred
-  mutable std::unique_ptr<FmuInstance> fmu_;
+  std::unique_ptr<LazyInstance> fmu_;  // made now or at first use (instantiation.h)
   std::vector<const Variable*> inputs_, outputs_;
   double step_size_;
   bool can_save_state_ = false;  // canGetAndSetFMUstate and canSerializeFMUstate

@@ -30,7 +30,6 @@
 // run correctly.
 #pragma once
 
-#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -40,6 +39,8 @@
 #include "mechsim/models/block.h"
 
 namespace mechsim::fmi {
+
+class LazyInstance;  // lazy_instance.h
 
 class ModelExchangeBlock final : public models::Block {
  public:
@@ -68,6 +69,7 @@ class ModelExchangeBlock final : public models::Block {
   // Loads, instantiates and initializes the FMU if it has not been yet (instantiation.h).
   void instantiate_now() const;
   const FmuArchive& archive() const { return *archive_; }
+  ~ModelExchangeBlock() override;
 
  private:
   FmuInstance& fmu() const;
@@ -77,8 +79,7 @@ class ModelExchangeBlock final : public models::Block {
   void take_update(const DiscreteUpdate& update, double t) const;
 
   std::shared_ptr<const FmuArchive> archive_;
-  std::function<void()> instantiate_;  // what the constructor would do, when it is deferred
-  mutable std::unique_ptr<FmuInstance> fmu_;
+  std::unique_ptr<LazyInstance> fmu_;  // made now or at first use (instantiation.h)
   std::vector<const Variable*> inputs_, outputs_;
   mutable std::vector<double> x0_;
   int num_indicators_ = 0;
