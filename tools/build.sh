@@ -11,7 +11,7 @@ tests=ON
 case "${1:-}" in
   "") ;;
   --run-only)
-    targets=(--target mechsim cam_shaft follower servo_amplifier tachometer slide cvt node_group)
+    targets=(--target mechsim mechsim_nodes)
     # A new tree is configured without the suites (GoogleTest need not be installed yet);
     # an existing one keeps what it has, so that the test command's build stays valid.
     tests=$(sed -n 's/^MECHSIM_BUILD_TESTS:BOOL=//p' build/CMakeCache.txt 2>/dev/null || true)

@@ -24,7 +24,7 @@
 #include "atomic_file.h"
 #include "hosts.h"
 #include "mechsim/config/scene.h"
-#include "mechsim/cosim/catalog.h"
+#include "mechsim/catalog/catalog.h"
 #include "mechsim/cosim/node_command_line.h"
 #include "mechsim/transport/backends.h"
 #include "mechsim/transport/network_config.h"

@@ -6,7 +6,7 @@
 #include <optional>
 #include <string>
 
-#include "mechsim/cosim/coupling/scheme.h"
+#include "mechsim/catalog/coupling/scheme.h"
 
 namespace mechsim::bench {
 

@@ -42,7 +42,7 @@
 #include "mechsim/assess/stable_step.h"
 #include "mechsim/config/scene.h"
 #include "mechsim/cosim/divergence_guard.h"
-#include "mechsim/cosim/coupling/coupling_spec.h"
+#include "mechsim/catalog/coupling/coupling_spec.h"
 #include "mechsim/cosim/node_stepper.h"
 #include "mechsim/cosim/scene_plan.h"
 

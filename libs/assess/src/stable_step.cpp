@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "mechsim/cosim/coupling/coupling_spec.h"
+#include "mechsim/catalog/coupling/coupling_spec.h"
 
 namespace mechsim::assess {
 

@@ -11,7 +11,7 @@
 #include "mechsim/transport/topic_types.h"
 
 #include "mechsim/config/scene.h"
-#include "mechsim/cosim/catalog.h"
+#include "mechsim/catalog/catalog.h"
 #include "mechsim/models/block.h"
 
 namespace mechsim::fmi {

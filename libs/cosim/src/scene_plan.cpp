@@ -6,7 +6,7 @@
 
 #include "mechsim/config/units.h"
 #include "coupling/cut_plan.h"
-#include "mechsim/cosim/coupling/coupling_spec.h"
+#include "mechsim/catalog/coupling/coupling_spec.h"
 
 #include <algorithm>
 #include <cmath>

@@ -9,7 +9,7 @@
 #include <stdexcept>
 
 #include "exact_decimal.h"
-#include "mechsim/cosim/catalog.h"
+#include "mechsim/catalog/catalog.h"
 
 namespace mechsim::fmi_export {
 

@@ -73,6 +73,8 @@ const TopicType kTachoState{"mechsim::msg::TachoState", "tacho.idl",
 const TopicType kSlideState{"mechsim::msg::SlideState", "slide.idl",
                             {f64("spindle_angle"), f64("spindle_speed"), f64("slide_position"), f64("slide_speed"),
                              f64("coupling_torque")}};
+// Mirrors idl/scale.idl.
+const TopicType kScaleReading{"mechsim::msg::ScaleReading", "scale.idl", {f64("measured_position"), f64("measurement_error")}};
 // Mirrors idl/cvt.idl.
 const TopicType kCvtState{"mechsim::msg::CvtState", "cvt.idl",
                           {f64("input_speed"), f64("output_speed"), f64("output_acceleration"), f64("ratio"), f64("ratio_setting"), f64("ratio_command"), f64("motor_torque"), f64("belt_torque"), f64("input_torque"), f64("output_torque"), f64("eta_PB"), f64("eta_SYS"), bounded("clamping_force", 0.0, 1e7, "N"), f64("slip_margin"), f64("sigma_1"), f64("sigma_2"), f64("sigma_3"), f64("sigma_4"), f64("belt_loss"), f64("bearing_loss"), f64("flags"),
@@ -95,7 +97,8 @@ const TopicType kStepProposal{"mechsim::msg::StepProposal", "step.idl",
 
 const std::vector<const TopicType*>& all_topic_types() {
   static const std::vector<const TopicType*> types{&kCamState, &kFollowerState, &kServoCommand, &kTachoState,
-                                                          &kSlideState, &kCouplingPrediction, &kCvtState, &kStepProposal};
+                                                          &kSlideState, &kCouplingPrediction, &kCvtState, &kStepProposal,
+                                                          &kScaleReading};
   return types;
 }
 

@@ -18,7 +18,7 @@
 
 #include "fmu_info.h"
 #include "mechsim/config/scene.h"
-#include "mechsim/cosim/catalog.h"
+#include "mechsim/catalog/catalog.h"
 #include "mechsim/cosim/inproc_run.h"
 #include "mechsim/cosim/output_log.h"
 #include "mechsim/cosim/node_stepper.h"

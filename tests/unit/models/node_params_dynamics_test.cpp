@@ -7,7 +7,7 @@
 #include <string>
 
 #include "mechsim/config/config_node.h"
-#include "mechsim/cosim/node_params.h"
+#include "mechsim/catalog/node_params.h"
 
 namespace mechsim::cosim {
 namespace {

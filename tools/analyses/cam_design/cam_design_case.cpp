@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <numeric>
 
-#include "mechsim/cosim/node_params.h"
+#include "mechsim/catalog/node_params.h"
 #include "mechsim/models/constants.h"
 
 namespace mechsim::tools::cam_design {

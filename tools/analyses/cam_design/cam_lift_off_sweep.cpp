@@ -6,7 +6,7 @@
 
 #include "cam_design_json.h"
 #include "json_io.h"
-#include "mechsim/cosim/node_params.h"
+#include "mechsim/catalog/node_params.h"
 #include "mechsim/models/constants.h"
 #include "text_format.h"
 

@@ -1,6 +1,6 @@
 // `mechsim cvt-map SCENE`: the operating maps of the push-belt CVT (docs/cvt.md). The CVT
 // data is the first `cvt` participant's params (parsed by the node type's own parser,
-// mechsim/cosim/cvt_params.h), else the thesis rig. The grid is design.cvt_map:
+// mechsim/catalog/cvt_params.h), else the thesis rig. The grid is design.cvt_map:
 //   design:
 //     cvt_map:
 //       ratio_setting: {from: 5 mm, to: 55 mm, points: 5}     # or a list [5 mm, 30 mm]
@@ -17,7 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "mechsim/config/scene.h"
-#include "mechsim/cosim/cvt_params.h"
+#include "mechsim/catalog/cvt_params.h"
 #include "mechsim/models/cvt/cvt_model.h"
 
 namespace mechsim::tools::cvt_map {

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "mechsim/cosim/coupling/coupling_spec.h"
-#include "mechsim/cosim/nc_params.h"
+#include "mechsim/catalog/coupling/coupling_spec.h"
+#include "mechsim/catalog/nc_params.h"
 
 namespace mechsim::tools::nc_analyses {
 

@@ -1,5 +1,5 @@
 // Where the NC analyses take their data from, parsed with the node types' own parsers
-// (mechsim/cosim/nc_params.h) so that a scene means the same to a time run and to the
+// (mechsim/catalog/nc_params.h) so that a scene means the same to a time run and to the
 // analyses:
 //   motor  the first `tachometer` participant's params; else design.motor; else the spec's
 //          identified set (nc_slide.md §1).

@@ -2,7 +2,7 @@
 
 #include <stdexcept>
 
-#include "mechsim/cosim/coupling/coupling_spec.h"
+#include "mechsim/catalog/coupling/coupling_spec.h"
 
 namespace mechsim::cosim::coupling {
 

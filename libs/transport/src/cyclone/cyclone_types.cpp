@@ -6,6 +6,7 @@
 #include "coupling.h"
 #include "cvt.h"
 #include "follower.h"
+#include "scale.h"
 #include "servo.h"
 #include "slide.h"
 #include "step.h"
@@ -57,6 +58,8 @@ std::vector<CycloneType> make_bindings() {
                {MECHSIM_F64(mechsim_msg_SlideState, spindle_angle), MECHSIM_F64(mechsim_msg_SlideState, spindle_speed),
                 MECHSIM_F64(mechsim_msg_SlideState, slide_position), MECHSIM_F64(mechsim_msg_SlideState, slide_speed),
                 MECHSIM_F64(mechsim_msg_SlideState, coupling_torque)}});
+  b.push_back({find_topic_type("ScaleReading"), &mechsim_msg_ScaleReading_desc, sizeof(mechsim_msg_ScaleReading),
+               {MECHSIM_F64(mechsim_msg_ScaleReading, measured_position), MECHSIM_F64(mechsim_msg_ScaleReading, measurement_error)}});
   b.push_back({find_topic_type("CvtState"), &mechsim_msg_CvtState_desc, sizeof(mechsim_msg_CvtState),
                {MECHSIM_F64(mechsim_msg_CvtState, input_speed),
                 MECHSIM_F64(mechsim_msg_CvtState, output_speed),

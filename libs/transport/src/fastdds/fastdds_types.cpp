@@ -8,6 +8,7 @@
 #include "fastddsgen/couplingPubSubTypes.h"
 #include "fastddsgen/cvtPubSubTypes.h"
 #include "fastddsgen/followerPubSubTypes.h"
+#include "fastddsgen/scalePubSubTypes.h"
 #include "fastddsgen/fmuPubSubTypes.h"
 #include "fastddsgen/servoPubSubTypes.h"
 #include "fastddsgen/slidePubSubTypes.h"
@@ -155,6 +156,9 @@ std::vector<std::unique_ptr<FastType>> make_bindings() {
                         MECHSIM_F64(SlideState, spindle_angle), MECHSIM_F64(SlideState, spindle_speed),
                         MECHSIM_F64(SlideState, slide_position), MECHSIM_F64(SlideState, slide_speed),
                         MECHSIM_F64(SlideState, coupling_torque)}));
+  b.push_back(std::make_unique<Binding<ScaleReading, ScaleReadingPubSubType>>(
+      "ScaleReading", std::vector<Slot<ScaleReading>>{MECHSIM_F64(ScaleReading, measured_position),
+                                                      MECHSIM_F64(ScaleReading, measurement_error)}));
   b.push_back(std::make_unique<Binding<CvtState, CvtStatePubSubType>>(
       "CvtState", std::vector<Slot<CvtState>>{
           MECHSIM_F64(CvtState, input_speed),

@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "mechsim/config/config_node.h"
-#include "mechsim/cosim/catalog.h"
-#include "mechsim/cosim/cvt_params.h"
+#include "mechsim/catalog/catalog.h"
+#include "mechsim/catalog/cvt_params.h"
 #include "mechsim/models/cvt/cvt_block.h"
 
 namespace mechsim::cosim {

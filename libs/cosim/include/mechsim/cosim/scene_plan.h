@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "mechsim/config/scene.h"
-#include "mechsim/cosim/catalog.h"
+#include "mechsim/catalog/catalog.h"
 #include "mechsim/cosim/step_grid.h"
 
 namespace mechsim::cosim {

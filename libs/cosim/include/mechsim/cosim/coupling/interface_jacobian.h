@@ -27,7 +27,7 @@
 #include <span>
 #include <vector>
 
-#include "mechsim/cosim/coupling/scheme.h"  // kMaxLevels
+#include "mechsim/catalog/coupling/scheme.h"  // kMaxLevels
 #include "mechsim/models/block.h"
 #include "mechsim/solve/block_integrator.h"
 

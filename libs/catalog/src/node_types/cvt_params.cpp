@@ -1,4 +1,4 @@
-#include "mechsim/cosim/cvt_params.h"
+#include "mechsim/catalog/cvt_params.h"
 
 #include <numbers>
 

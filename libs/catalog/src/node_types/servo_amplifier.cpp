@@ -1,7 +1,7 @@
 // Node type `servo_amplifier`: the NC position and velocity loop (spec nc_slide.md §3),
 // publishing <name>/command (ServoCommand). Reads the tacho voltage and the spindle angle.
-#include "mechsim/cosim/catalog.h"
-#include "mechsim/cosim/nc_params.h"
+#include "mechsim/catalog/catalog.h"
+#include "mechsim/catalog/nc_params.h"
 
 namespace mechsim::cosim {
 

@@ -1,4 +1,4 @@
-#include "mechsim/cosim/coupling/coupling_spec.h"
+#include "mechsim/catalog/coupling/coupling_spec.h"
 
 #include "mechsim/config/units.h"
 

@@ -52,12 +52,6 @@ struct NodeType {
 const std::vector<NodeType>& node_types();
 const NodeType* find_node_type(const std::string& name);
 
-// Registration of each node type lives in src/node_types/<type>.cpp.
-NodeType cam_shaft_node_type();
-NodeType follower_node_type();
-NodeType servo_amplifier_node_type();
-NodeType tachometer_node_type();
-NodeType slide_node_type();
-NodeType cvt_node_type();
+// Each type's entry is built in src/node_types/<type>.cpp and registered in src/catalog.cpp.
 
 }  // namespace mechsim::cosim

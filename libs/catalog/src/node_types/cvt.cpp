@@ -6,8 +6,8 @@
 #include <memory>
 #include <string>
 
-#include "mechsim/cosim/catalog.h"
-#include "mechsim/cosim/cvt_params.h"
+#include "mechsim/catalog/catalog.h"
+#include "mechsim/catalog/cvt_params.h"
 #include "mechsim/models/cvt/cvt_block.h"
 
 namespace mechsim::cosim {

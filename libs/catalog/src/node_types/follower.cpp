@@ -6,8 +6,8 @@
 #include <optional>
 #include <string>
 
-#include "mechsim/cosim/catalog.h"
-#include "mechsim/cosim/node_params.h"
+#include "mechsim/catalog/catalog.h"
+#include "mechsim/catalog/node_params.h"
 #include "mechsim/models/follower/flexible_follower_block.h"
 #include "mechsim/models/follower/follower_block.h"
 

@@ -1,4 +1,4 @@
-#include "mechsim/cosim/coupling/scheme.h"
+#include "mechsim/catalog/coupling/scheme.h"
 
 #include <algorithm>
 

@@ -6,8 +6,8 @@
 #include <optional>
 #include <string>
 
-#include "mechsim/cosim/catalog.h"
-#include "mechsim/cosim/node_params.h"
+#include "mechsim/catalog/catalog.h"
+#include "mechsim/catalog/node_params.h"
 #include "mechsim/models/cam/cam_shaft_block.h"
 
 namespace mechsim::cosim {

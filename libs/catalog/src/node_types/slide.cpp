@@ -2,9 +2,9 @@
 // §2-§3), rigid, two-mass or modal, publishing <name>/state (SlideState). Reads the motor's
 // angle and speed across the coupling and evaluates it itself, or (interface_jacobian) takes
 // the coupling torque from the coupling solve.
-#include "mechsim/cosim/catalog.h"
-#include "mechsim/cosim/coupling/coupling_spec.h"
-#include "mechsim/cosim/nc_params.h"
+#include "mechsim/catalog/catalog.h"
+#include "mechsim/catalog/coupling/coupling_spec.h"
+#include "mechsim/catalog/nc_params.h"
 #include "mechsim/models/nc/slide_block.h"
 
 namespace mechsim::cosim {

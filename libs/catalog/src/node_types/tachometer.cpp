@@ -2,9 +2,9 @@
 // nc_slide.md §1), publishing <name>/state (TachoState). Reads the armature voltage and,
 // across the coupling, the spindle's angle and speed (compliant) or the coupling torque
 // (torque; interface_jacobian, where the torque comes from the coupling solve).
-#include "mechsim/cosim/catalog.h"
-#include "mechsim/cosim/coupling/coupling_spec.h"
-#include "mechsim/cosim/nc_params.h"
+#include "mechsim/catalog/catalog.h"
+#include "mechsim/catalog/coupling/coupling_spec.h"
+#include "mechsim/catalog/nc_params.h"
 #include "mechsim/models/nc/motor_tacho_block.h"
 
 namespace mechsim::cosim {

@@ -4,7 +4,7 @@
 #pragma once
 
 #include "mechsim/config/config_node.h"
-#include "mechsim/cosim/coupling/scheme.h"
+#include "mechsim/catalog/coupling/scheme.h"
 #include "mechsim/models/nc/coupling.h"
 
 namespace mechsim::cosim::coupling {

@@ -1,4 +1,4 @@
-#include "mechsim/cosim/nc_params.h"
+#include "mechsim/catalog/nc_params.h"
 
 namespace mechsim::cosim {
 

@@ -1,4 +1,0 @@
-// Node process `cam_shaft`: see nodes/common/node_main.h.
-#include "node_main.h"
-
-int main(int argc, char** argv) { return mechsim::nodes::node_main("cam_shaft", argc, argv); }

@@ -1,4 +1,0 @@
-// Node process `slide`: see nodes/common/node_main.h.
-#include "node_main.h"
-
-int main(int argc, char** argv) { return mechsim::nodes::node_main("slide", argc, argv); }
