@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "mechsim/cosim/fmu_unpacking.h"
 #include "mechsim/cosim/thread_host.h"
 #include "mechsim/transport/backends.h"
 #include "node_main.h"
@@ -32,6 +33,8 @@ int node_group_main(int argc, char** argv) {
 
   stop_on_signals();
   try {
+    // An FMU unpacks in the run folder, where the launcher removes it whatever becomes of us.
+    if (!command_line.run_dir.empty()) cosim::unpack_fmus_in_run_folder(command_line.run_dir);
     const config::Scene scene = config::load_scene(scene_path);
     std::map<std::string, std::string> replay_of;
     for (const auto& r : command_line.replays) {

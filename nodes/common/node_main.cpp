@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 
 #include "mechsim/config/scene.h"
+#include "mechsim/cosim/fmu_unpacking.h"
 #include "mechsim/cosim/node_command_line.h"
 #include "mechsim/cosim/node_runner.h"
 #include "mechsim/cosim/output_log.h"
@@ -91,6 +92,8 @@ int node_main(const char* node_type, int argc, char** argv) {
 
   stop_on_signals();
   try {
+    // An FMU unpacks in the run folder, where the launcher removes it whatever becomes of us.
+    if (!command_line.run_dir.empty()) cosim::unpack_fmus_in_run_folder(command_line.run_dir);
     config::Scene scene = config::load_scene(scene_path);
     const auto* spec = scene.find_participant(node_name);
     if (!spec) {

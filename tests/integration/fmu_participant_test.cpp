@@ -67,6 +67,12 @@ class FmuParticipants : public RunFolderTest {
     expect_closed_form(tag, "filter", 1e-5);
     const json s = summary(tag);
     EXPECT_EQ(s["status"], "ok") << s.dump(2);
+    EXPECT_EQ(s["complete"], true);
+    // The step each node reached (its end record), on every vendor: not the last status heard.
+    for (const char* node : {"cam", "lag", "filter"}) {
+      EXPECT_EQ(s["nodes"][node]["last_step"], 300) << node << " on " << tag;
+      EXPECT_EQ(s["nodes"][node]["reached_end"], true) << node << " on " << tag;
+    }
   }
 };
 
@@ -193,6 +199,25 @@ TEST_F(FailingFmu, AnFmuThatAbortsItsProcessIsANodeCrash) {
   EXPECT_FALSE(r.timed_out);
   EXPECT_NE(r.output.find("node 'bad' killed by signal 6 (Aborted)"), std::string::npos) << r.output;
   EXPECT_EQ(summary("abort")["status"], "failed");
+}
+
+// exit(0) inside the FMU's step at t = 50 ms of 100 ms: the exit code says nothing went
+// wrong, but the node wrote no end record, so the run fails naming the node, the step and
+// the exit, and its summary says it is incomplete.
+TEST_F(FailingFmu, AnFmuThatExitsCleanlyMidRunFailsTheRunAsIncomplete) {
+  CommandResult r = run_faulty("exit0", "faulty_fmi2_cs.fmu", 4);
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_FALSE(r.timed_out);
+  EXPECT_NE(r.output.find("node 'bad' ended early: exit code 0 at step 50 of 100, before its last step"), std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("the run is incomplete"), std::string::npos) << r.output;
+  const json s = summary("exit0");
+  EXPECT_EQ(s["status"], "failed");
+  EXPECT_EQ(s["complete"], false);
+  EXPECT_EQ(s["failure"]["node"], "bad");
+  EXPECT_EQ(s["failure"]["last_step"], 50);
+  EXPECT_EQ(s["nodes"]["bad"]["last_step"], 50);
+  EXPECT_EQ(s["nodes"]["bad"]["reached_end"], false);
 }
 
 }  // namespace

@@ -22,7 +22,7 @@ std::string number(double v) {
 // "binaries/<platform>/<id>.so" for this host, or why not.
 std::string host_binary(const FmuArchive& a, const Interface& i) {
   try {
-    a.binary_path(i.kind);
+    a.check_binary(i.kind);
     return "binaries/" + fmi::host_platform(a.description().version) + "/" + i.model_identifier + ".so";
   } catch (const fmi::FmuError&) {
     return "";

@@ -19,6 +19,9 @@
 #include "domain_readers.h"
 #include "hosts.h"
 #include "mechsim/config/scene.h"
+#include "fmu_probe.h"
+#include "mechsim/cosim/fmu_probe.h"
+#include "mechsim/cosim/fmu_unpacking.h"
 #include "mechsim/cosim/output_log.h"
 #include "mechsim/cosim/scene_plan.h"
 #include "mechsim/transport/backends.h"
@@ -61,6 +64,12 @@ class Run {
  public:
   Run(const LaunchOptions& o, config::Scene& scene, cosim::ScenePlan& plan, HostLayout hosts)
       : opt_(o), scene_(scene), plan_(plan), hosts_(std::move(hosts)) {}
+  // The FMUs the run's processes unpacked, however those processes ended (fmu_unpacking.h).
+  ~Run() {
+    if (run_dir_.empty()) return;
+    if (const std::string why = cosim::remove_fmu_unpack_folder(run_dir_); !why.empty())
+      std::fprintf(stderr, "mechsim: warning: %s\n", why.c_str());
+  }
 
   int execute();
 
@@ -222,6 +231,7 @@ cosim::SupervisedRun Run::run_nodes() {
   o.start = transport::ControlMessage{run_id_, transport::ControlCommand::start, scene_.time.end, scene_.time.step,
                                       realtime ? transport::RunMode::realtime : transport::RunMode::lockstep, scene_.rtf, 0, 0, 0, {}};
   o.not_ready_hint = " (see their logs in " + run_dir_ + ")";
+  if (!plan_.grid()->is_adaptive()) o.last_step = plan_.grid()->steps();
 
   cosim::SupervisorHooks hooks;
   hooks.interrupted = [] { return g_interrupt.load(); };
@@ -286,6 +296,17 @@ int Run::execute() {
     return 2;
   }
   open_run_folder();
+  // Each FMU instantiated once in a child before the nodes start (fmu_probe.h), unpacked
+  // where the nodes find it: a crash there is named, and takes only the child down.
+  if (const std::string why = tools::probe_fmus_in_children(run_dir_ + "/scene.yaml", {}, plan_, cosim::fmu_unpack_folder(run_dir_));
+      !why.empty()) {
+    std::fprintf(stderr, "mechsim launch: %s\n", why.c_str());
+    tools::write_json_file(run_dir_ + "/summary.json",
+                           json{{"schema_version", tools::schema_version}, {"scene", scene_.name}, {"run_id", hex_id(run_id_)},
+                                {"run_dir", run_dir_}, {"status", "failed"}, {"complete", false},
+                                {"failure", {{"node", ""}, {"last_step", 0}, {"reason", why}}}});
+    return 2;
+  }
   if (const int refused = connect(); refused != 0) return refused;
   std::fprintf(stderr, "mechsim: scene '%s', run %s, domain %d, %zu nodes, folder %s\n", scene_.name.c_str(),
                hex_id(run_id_).c_str(), domain_, plan_.nodes().size(), run_dir_.c_str());
@@ -319,6 +340,7 @@ void Run::open_run_folder() {
   run_id_ = (static_cast<std::uint64_t>(rd()) << 32) ^ rd() ^ static_cast<std::uint64_t>(::getpid());
   run_dir_ = (fs::path(opt_.runs_dir) / (scene_.name + "-" + hex_id(run_id_).substr(8))).string();
   fs::create_directories(run_dir_);
+  cosim::unpack_fmus_in_run_folder(run_dir_);  // the reference's FMUs too
   {
     std::ofstream f(run_dir_ + "/scene.yaml");
     f << "# resolved scene of run " << hex_id(run_id_) << " (from " << scene_.file << ", overrides applied)\n"
@@ -510,6 +532,7 @@ int launch(const LaunchOptions& options) {
     // Across a network packets get lost: every sample goes twice (docs/faults.md).
     if (hosts.multi_host && scene.faults.redundant_samples == config::RedundantSamples::automatic)
       set_on_loaded_scene(scene, "faults.redundant_samples=true");
+    cosim::defer_fmu_instantiation();  // an FMU's code runs in the nodes and in the probes' children
     plan.emplace(cosim::ScenePlan::build(scene));
     auto vendors = transport::available_vendors();
     for (const auto& p : scene.participants)

@@ -7,6 +7,7 @@
 #include "assessment_json.h"
 #include "json_io.h"
 #include "mechsim/cosim/composer.h"
+#include "mechsim/cosim/node_end_record.h"
 #include "mechsim/cosim/output_log.h"
 #include "mechsim/cosim/step_grid.h"
 #include "provenance.h"
@@ -52,7 +53,9 @@ json node_summary(const RunFacts& run, const std::string& name) {
             {"vendor", spec->vendor},
             {"host", !host.remote(name) ? (run.hosts.launcher_host.empty() ? "local" : run.hosts.launcher_host) : spec->host},
             {"exit", host.describe_exit(name)},
-            {"last_step", w.seen ? w.last.header.step : 0},
+            // Where the node got to (its end record, else its output log), not the last status heard.
+            {"last_step", run.supervisor.reached_step(name)},
+            {"reached_end", cosim::read_node_end_record(run.run_dir, name).has_value()},
             {"solver",
              {{"steps", w.last.solver_steps},
               {"rhs_evals", w.last.rhs_evals},
@@ -117,6 +120,8 @@ json summarise(const RunFacts& run, const cosim::SupervisedRun& out) {
   s["redundant_samples"] = run.scene.faults.redundant();
   if (run.scene.checkpointing()) s["restart"] = restart_summary(run);
   s["status"] = out.ok ? "ok" : "failed";
+  // A failed run stopped before its end: what it wrote covers part of the run only.
+  s["complete"] = out.ok;
   s["macro_step_s"] = run.scene.time.step;
   s["simulated_time_s"] = run.scene.time.end - run.scene.time.start;
   // An adaptive run's steps are those its nodes logged (the launcher's own grid never grows).
@@ -237,6 +242,7 @@ int print_run_report(json& summary, const config::Scene& scene, std::uint64_t ru
                out.failed_node.empty() || out.failed_node.find(',') != std::string::npos
                    ? ""
                    : (" (last step " + std::to_string(out.failed_step) + ")").c_str());
+  std::fprintf(stderr, "mechsim: the run is incomplete (summary.json: \"complete\": false)\n");
   print_solver_health(summary["nodes"]);
   std::fprintf(stderr, "mechsim: all node processes stopped; logs in %s\n", run_dir.c_str());
   return out.exit_code;

@@ -5,6 +5,8 @@
 
 #include "commands.h"
 #include "mechsim/config/scene.h"
+#include "fmu_probe.h"
+#include "mechsim/cosim/fmu_probe.h"
 #include "mechsim/cosim/process_realtime.h"
 #include "mechsim/cosim/scene_plan.h"
 #include "process_packing.h"
@@ -19,7 +21,13 @@ void add_check_command(CLI::App& app, int& exit_code) {
   cmd->callback([args, &exit_code] {
     try {
       config::Scene scene = config::load_scene(args->scene, args->overrides());
+      cosim::defer_fmu_instantiation();  // an FMU's code runs in a child of ours, below
       cosim::ScenePlan plan = cosim::ScenePlan::build(scene);
+      if (const std::string why = probe_fmus_in_children(args->scene, args->overrides(), plan, ""); !why.empty()) {
+        std::fprintf(stderr, "mechsim check: %s\n", why.c_str());
+        exit_code = 2;
+        return;
+      }
       // A secured scene: what the launcher would refuse before starting anything (the
       // folder's files, one vendor, a domain the governance covers; docs/security.md).
       if (const auto problems = launch::security_problems(scene); !problems.empty()) {

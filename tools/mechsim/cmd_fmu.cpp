@@ -6,6 +6,7 @@
 
 #include "commands.h"
 #include "fmu_info.h"
+#include "fmu_probe.h"
 #include "mechsim/config/scene.h"
 #include "mechsim/fmi_export/fmu_writer.h"
 #include "json_io.h"
@@ -86,6 +87,19 @@ void add_fmu_command(CLI::App& app, int& exit_code) {
       std::fprintf(stderr, "mechsim fmu info: %s\n", e.what());
       exit_code = 1;
     }
+  });
+
+  auto* probe = fmu->add_subcommand(
+      "probe", "Instantiate and initialize a scene participant's FMU in this process and say how it went (JSON on stdout); "
+               "`mechsim check` and `mechsim launch` run it as a child, so that an FMU's crash is not theirs");
+  auto probe_args = std::make_shared<SceneArgs>();
+  auto participant = std::make_shared<std::string>();
+  auto unpack_dir = std::make_shared<std::string>();
+  add_scene_args(probe, *probe_args);
+  probe->add_option("--participant", *participant, "the participant played by the FMU")->required();
+  probe->add_option("--unpack-dir", *unpack_dir, "unpack the FMU under this folder (default: a temporary one, removed after)");
+  probe->callback([probe_args, participant, unpack_dir, &exit_code] {
+    exit_code = run_fmu_probe(probe_args->scene, probe_args->overrides(), *participant, *unpack_dir);
   });
 
   add_fmu_export_command(fmu, exit_code);

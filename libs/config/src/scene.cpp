@@ -501,7 +501,7 @@ ConfigNode parse_fmu(Scene& scene, const std::string& name, ConfigNode p, const 
     // parameters}` of an FMU in place.
     if (!p.has("fmu")) p.fail("expected `fmu: FILE` for a participant of type fmu");
     if (p.child("fmu").is_map()) {
-      for (const char* key : {"interface", "step", "parameters"})
+      for (const char* key : {"interface", "step", "parameters", "unpack_limits"})
         if (p.has(key)) p.child(key).fail("expected it inside the fmu: map (or `fmu: FILE` with it beside)");
       spec.fmu = p.child("fmu");
     } else {
@@ -509,7 +509,7 @@ ConfigNode parse_fmu(Scene& scene, const std::string& name, ConfigNode p, const 
     }
     if (p.has("params")) p.child("params").fail("expected no params: for an FMU participant (its parameters: are the FMU's)");
   } else {
-    for (const char* key : {"interface", "step", "parameters"})
+    for (const char* key : {"interface", "step", "parameters", "unpack_limits"})
       if (p.has(key)) p.child(key).fail("expected it only beside `fmu: FILE` in a participant of type fmu");
     if (p.has("fmu")) spec.fmu = p.child("fmu");
   }
@@ -521,7 +521,7 @@ ParticipantSpec parse_participant(Scene& scene, const std::string& name, ConfigN
                                   const ProcessRealtimeSpec& scene_process_realtime) {
   if (!valid_name(name)) p.fail("expected an instance name of letters, digits and '_'");
   p.allow_only({"type", "params", "dds", "host", "process", "solver", "realtime", "restart", "fmu", "testing", "interface", "step",
-                "parameters"});
+                "parameters", "unpack_limits"});
   ParticipantSpec spec;
   spec.name = name;
   if (auto t = p.optional_child("testing")) parse_testing_seams(*t, spec);

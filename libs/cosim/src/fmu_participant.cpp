@@ -4,6 +4,9 @@
 #include <map>
 
 #include "mechsim/config/units.h"
+#include "mechsim/cosim/fmu_probe.h"
+#include "mechsim/cosim/scene_plan.h"
+#include "mechsim/fmi/instantiation.h"
 #include "mechsim/fmi/co_simulation_block.h"
 #include "mechsim/fmi/model_exchange_block.h"
 
@@ -61,6 +64,23 @@ void check_unit(const config::Scene& scene, const std::string& key_path, const f
                                 native_unit + "', got " + shown);
 }
 
+// `unpack_limits: {size_mb, ratio}` beside the FMU's file: raises the archive limits (archive.h).
+fmi::ArchiveLimits read_unpack_limits(const config::ConfigNode& f) {
+  fmi::ArchiveLimits limits;
+  const auto l = f.optional_child("unpack_limits");
+  if (!l) return limits;
+  if (!l->is_map()) l->fail("expected {size_mb: N, ratio: R}: the FMU's unpacked size in MiB and unpacked bytes per archive byte");
+  l->allow_only({"size_mb", "ratio"});
+  const auto positive = [&](const char* key) {
+    const double v = l->number(key);
+    if (!(v > 0)) l->child(key).fail("expected a number > 0");
+    return v;
+  };
+  if (l->has("size_mb")) limits.max_unpacked_bytes = static_cast<std::uint64_t>(positive("size_mb") * 1024 * 1024);
+  if (l->has("ratio")) limits.max_ratio = positive("ratio");
+  return limits;
+}
+
 // What a scene says about an FMU, in either form: the map `fmu: {file, interface, step,
 // parameters}` (file_key "file") or a participant of type fmu (file_key "fmu").
 struct FmuSettings {
@@ -84,8 +104,8 @@ FmuSettings read_fmu_settings(const config::Scene& scene, const config::Particip
                  ? fmi::InterfaceKind::model_exchange
                  : fmi::InterfaceKind::co_simulation;
   try {
-    out.archive = std::make_shared<const fmi::FmuArchive>(fmi::FmuLabel{file.string(), spec.name});
-    out.archive->binary_path(out.kind);  // the interface and this host's binary, before anything else
+    out.archive = std::make_shared<const fmi::FmuArchive>(fmi::FmuLabel{file.string(), spec.name}, read_unpack_limits(f));
+    out.archive->check_binary(out.kind);  // the interface and this host's binary, before anything else
   } catch (const fmi::FmuError& e) {
     refuse(scene, out.key + "." + file_key, std::string("expected a usable FMU: ") + e.what());
   }
@@ -165,7 +185,7 @@ BuiltFmuParticipant make_fmu_participant(const config::Scene& scene, const confi
   const config::ConfigNode& f = beside ? *spec.fmu_participant : *spec.fmu;
   if (!beside) {
     if (!f.is_map()) f.fail("expected {file: PATH, interface: co-simulation|model-exchange, step, parameters}");
-    f.allow_only({"file", "interface", "step", "parameters"});
+    f.allow_only({"file", "interface", "step", "parameters", "unpack_limits"});
   }
   if (coupling)
     refuse(scene, spec.key_path, "expected no coupling element at an FMU participant (its ports are joined port by port)");
@@ -210,7 +230,7 @@ std::unique_ptr<models::Block> make_fmu_block(const config::Scene& scene, const 
   const config::ConfigNode& f = *spec.fmu;
   const std::string key = f.path();
   if (!f.is_map()) f.fail("expected {file: PATH, interface: co-simulation|model-exchange, step, parameters}");
-  f.allow_only({"file", "interface", "step", "parameters"});
+  f.allow_only({"file", "interface", "step", "parameters", "unpack_limits"});
   if (coupling)
     refuse(scene, key, "expected no coupling element at a participant played by an FMU (the cut's spring-damper "
                        "is evaluated by the native blocks)");
@@ -242,6 +262,42 @@ std::unique_ptr<models::Block> make_fmu_block(const config::Scene& scene, const 
   }
 
   return make_block(scene, settings);
+}
+
+}  // namespace mechsim::cosim
+
+namespace mechsim::cosim {
+
+namespace {
+
+// The FMU block of a planned node, as either kind (nullptr: a native block).
+template <typename F>
+void with_fmu_block(const models::Block* block, F&& f) {
+  if (const auto* cs = dynamic_cast<const fmi::CoSimulationBlock*>(block)) f(*cs);
+  if (const auto* me = dynamic_cast<const fmi::ModelExchangeBlock*>(block)) f(*me);
+}
+
+}  // namespace
+
+std::vector<PlannedFmu> planned_fmus(const ScenePlan& plan) {
+  std::vector<PlannedFmu> out;
+  for (const auto& node : plan.nodes())
+    with_fmu_block(node.block.get(), [&](const auto& b) { out.push_back({node.name(), b.archive().label().file}); });
+  return out;
+}
+
+void defer_fmu_instantiation() { fmi::set_block_instantiation(fmi::Instantiation::at_first_use); }
+
+void instantiate_fmu(const ScenePlan& plan, const std::string& participant) {
+  const PlannedNode& node = plan.node(participant);
+  const std::string key = node.spec->key_path + ".fmu";
+  with_fmu_block(node.block.get(), [&](const auto& b) {
+    try {
+      b.instantiate_now();
+    } catch (const fmi::FmuError& e) {
+      refuse(plan.scene(), key, std::string("expected an FMU that initializes: ") + e.what());
+    }
+  });
 }
 
 }  // namespace mechsim::cosim

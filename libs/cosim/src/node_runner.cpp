@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "mechsim/cosim/checkpoint.h"
+#include "mechsim/cosim/node_end_record.h"
 #include "mechsim/cosim/divergence_guard.h"
 #include "mechsim/cosim/node_stepper.h"
 #include "mechsim/cosim/step_topic.h"
@@ -135,6 +136,7 @@ NodeLoop::NodeLoop(ScenePlan& plan, const std::string& name, transport::Particip
       generation_(options.generation),
       gauss_seidel_input_(has_gauss_seidel_input(node_)),
       header_{options.run_id, 0, scene_.time.start} {
+  if (!options_.run_dir.empty()) remove_node_end_record(options_.run_dir, name_);
   add_observers();
   // A resumed node waits for the resume of its generation instead of the start.
   if (resumed_) {
@@ -382,6 +384,8 @@ void NodeLoop::finish() {
   if (!options_.run_dir.empty()) pacing_->write_figures(options_.run_dir + "/" + name_ + ".realtime.json");
   io_.flush();
   status_.copy_stats(stepper_.solver_stats());
+  // After the logs are flushed: the launcher takes a clean exit without it for an early one.
+  if (!options_.run_dir.empty()) write_node_end_record(options_.run_dir, name_, {stepper_.step(), stepper_.time()});
   status_.set_state(transport::NodeState::done);
   std::printf("done: %llu steps, t = %.9g s, %.3f s wall\n", static_cast<unsigned long long>(stepper_.step()), stepper_.time(),
               status_.elapsed());

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "mechsim/cosim/checkpoint.h"
+#include "mechsim/cosim/node_end_record.h"
 #include "mechsim/cosim/output_log.h"
 #include "mechsim/cosim/pacer.h"
 
@@ -128,6 +129,12 @@ void Supervisor::check_exits(bool running) {
                        " restart(s): faults.restart_limit " + std::to_string(opt_.restart_limit) + " reached");
       continue;
     }
+    if (e.clean && running && !reached_end(e.node)) {
+      // Exit code 0 without the last step (an FMU's exit(0) in its step): the run is short.
+      fail(e.node, "node '" + e.node + "' ended early: " + host.describe_exit(e.node) + " at step " +
+                       std::to_string(last_step_of(e.node)) + of_last_step() + ", before its last step; the run is incomplete");
+      continue;
+    }
     if (!e.clean || !running) {
       const NodeWatch& w = watch_[e.node];
       std::string reason = "node '" + e.node + "' " + host.describe_exit(e.node);
@@ -137,6 +144,29 @@ void Supervisor::check_exits(bool running) {
       fail(e.node, reason, e.diverged);
     }
   }
+}
+
+// A node that exited with code 0 finished when it wrote its end record (node_end_record.h)
+// or said "done"; a remote node's record is on its host until the hand-back, so its
+// status, which may still be in flight, is waited for a moment.
+bool Supervisor::reached_end(const std::string& node) {
+  if (opt_.run_dir.empty() || read_node_end_record(opt_.run_dir, node)) return true;
+  const auto done = [&] { return watch_[node].seen && watch_[node].last.state == transport::NodeState::done; };
+  const auto asked = Clock::now();
+  while (!done() && host_of(node).remote(node) && seconds_since(asked) < 2.0) {
+    participant_.wait(std::chrono::milliseconds(5));
+    take_status();
+  }
+  return done();
+}
+
+std::string Supervisor::of_last_step() const {
+  return opt_.last_step > 0 ? " of " + std::to_string(opt_.last_step) : "";
+}
+
+std::uint64_t Supervisor::reached_step(const std::string& node) const {
+  if (const auto end = read_node_end_record(opt_.run_dir, node)) return end->step;
+  return last_step_of(node);
 }
 
 // Every node back to the newest checkpoint they all hold: the dead ones started again

@@ -1,6 +1,7 @@
 #include "mechsim/fmi/co_simulation_block.h"
 
 #include "exchanged_variables.h"
+#include "lazy_instance.h"
 #include "saved_state.h"
 
 namespace mechsim::fmi {
@@ -17,30 +18,40 @@ CoSimulationBlock::CoSimulationBlock(std::shared_ptr<const FmuArchive> archive_i
   for (const Variable* v : inputs_) declare_input(v->name, port_unit(*v), start_value(*v, archive.label()));
   for (const Variable* v : outputs_) declare_output(v->name, port_unit(*v));  // held: no feedthrough
   can_save_state_ = missing_state_capabilities(archive.description(), InterfaceKind::co_simulation).empty();
-  fmu_ = initialize(archive, InterfaceKind::co_simulation, parameters, t0, t_stop);
   held_.resize(outputs_.size());
-  for (std::size_t i = 0; i < outputs_.size(); ++i) held_[i] = get_value(*fmu_, *outputs_[i]);
+  fmu_ = std::make_unique<LazyInstance>(
+      [this, parameters, t0, t_stop] { return initialize(*archive_, InterfaceKind::co_simulation, parameters, t0, t_stop); },
+      [this](FmuInstance& fmu) {
+        for (std::size_t i = 0; i < outputs_.size(); ++i) held_[i] = get_value(fmu, *outputs_[i]);
+      });
+  fmu_->make_unless_deferred();
 }
+
+CoSimulationBlock::~CoSimulationBlock() = default;
+void CoSimulationBlock::instantiate_now() const { fmu_->get(); }
+FmuInstance& CoSimulationBlock::fmu() const { return fmu_->get(); }
 
 void CoSimulationBlock::calc_outputs(double, std::span<const double>, std::span<const double>,
                                      std::span<double> y) const {
+  instantiate_now();
   std::copy(held_.begin(), held_.end(), y.begin());
 }
 
 void CoSimulationBlock::discrete_update(double t, std::span<double>, std::span<const double> u) {
-  if (sampled_once_ && t > last_sample_) fmu_->do_step(last_sample_, t - last_sample_);
+  if (sampled_once_ && t > last_sample_) fmu().do_step(last_sample_, t - last_sample_);
   sampled_once_ = true;
   last_sample_ = t;
-  for (std::size_t i = 0; i < inputs_.size(); ++i) set_value(*fmu_, *inputs_[i], u[i]);
-  for (std::size_t i = 0; i < outputs_.size(); ++i) held_[i] = get_value(*fmu_, *outputs_[i]);
+  for (std::size_t i = 0; i < inputs_.size(); ++i) set_value(fmu(), *inputs_[i], u[i]);
+  for (std::size_t i = 0; i < outputs_.size(); ++i) held_[i] = get_value(fmu(), *outputs_[i]);
 }
 
 // Layout: the held outputs, sampled_once, the last sample instant, then the FMU's bytes.
 std::vector<double> CoSimulationBlock::save_discrete_state() const {
+  instantiate_now();
   std::vector<double> saved = held_;
   saved.push_back(sampled_once_ ? 1.0 : 0.0);
   saved.push_back(last_sample_);
-  if (can_save_state_) append_bytes(saved, fmu_->save_state());
+  if (can_save_state_) append_bytes(saved, fmu().save_state());
   return saved;
 }
 
@@ -50,10 +61,10 @@ void CoSimulationBlock::restore_discrete_state(std::span<const double> saved) {
   std::size_t used = 0;
   if (saved.size() < n + 2 || !read_bytes(saved.subspan(n + 2), bytes, used) || n + 2 + used != saved.size()) {
     // An FMU without the flags saved no state: say what it lacks, else the record is damaged.
-    if (!can_save_state_) fmu_->restore_state({});
+    if (!can_save_state_) fmu().restore_state({});
     throw FmuError(archive_->label(), "restore: the saved state is not one of this co-simulation block");
   }
-  fmu_->restore_state(bytes);
+  fmu().restore_state(bytes);
   held_.assign(saved.begin(), saved.begin() + static_cast<std::ptrdiff_t>(n));
   sampled_once_ = saved[n] != 0.0;
   last_sample_ = saved[n + 1];

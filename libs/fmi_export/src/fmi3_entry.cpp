@@ -1,16 +1,14 @@
 // FMI 3.0 co-simulation entry points of an exported mechsim participant (FMI 3.0.2 §2.2,
 // §4), over ExportedParticipant. Declared with the importer's own function types
 // (mechsim/fmi/fmi3_functions.h) where it has them. The functions of capabilities the
-// modelDescription does not claim (event mode, early return, derivatives,
-// clocks, other types than Float64) log why and return fmi3Error.
+// modelDescription does not claim (event mode, early return, derivatives) log why and
+// return fmi3Error; those of interfaces and types it does not offer: fmi3_unsupported.cpp.
 #include <cstring>
 #include <limits>
 #include <string>
 
+#include "fmi3_export.h"
 #include "participant_resources.h"
-#include "mechsim/fmi/fmi3_functions.h"
-
-#define MECHSIM_FMI_EXPORT extern "C" __attribute__((visibility("default")))
 
 namespace {
 
@@ -45,6 +43,10 @@ fmi3Status unsupported(fmi3Instance c, const char* function, const char* why) {
 }
 
 }  // namespace
+
+fmi3Status mechsim::fmi_export::fmi3_unsupported(fmi3Instance instance, const char* function, const char* why) {
+  return unsupported(instance, function, why);
+}
 
 MECHSIM_FMI_EXPORT fmi3GetVersionTYPE fmi3GetVersion;
 const char* fmi3GetVersion(void) { return "3.0"; }

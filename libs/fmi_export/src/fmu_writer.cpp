@@ -213,7 +213,10 @@ std::string model_description_xml(const ExportedParticipant& p, int fmi_version,
   pugi::xml_document doc;
   pugi::xml_node root = add_model_description(doc, p.config(), v2, token);
   add_co_simulation(root, v2, id);
-  add_units(root, p.variables());
+  // FMI 3's independent variable `time` (add_model_variables) is in s: defined with the others.
+  std::vector<ExportedVariable> with_time = p.variables();
+  if (!v2) with_time.push_back({"time", VariableKind::output, 0, "s", 0.0, ""});
+  add_units(root, with_time);
   add_default_experiment(root, p.config());
   add_model_variables(root, p, v2);
   add_model_structure(root, p, v2);

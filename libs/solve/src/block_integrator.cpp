@@ -14,6 +14,7 @@
 
 #include "block_problem.h"
 #include "ode_backend.h"
+#include "stateless_events.h"
 
 namespace mechsim::solve {
 
@@ -63,6 +64,8 @@ struct BlockIntegrator::Impl {
 
   void integrate_to(double target);
   void handle_root();
+  void step_stateless_events_to(double target);
+  void dispatch_events();  // the crossings in `crossed` at t, to the block
   void restart();
   void refresh_stats();
   [[noreturn]] void fail(int flag);
@@ -104,8 +107,6 @@ BlockIntegrator::Impl::Impl(models::Block& block, SolverOptions opts, double t0,
   if (x0.size() != static_cast<std::size_t>(problem.num_states))
     throw std::invalid_argument(who + "x0 has " + std::to_string(x0.size()) + " entries, the block " +
                                 std::to_string(problem.num_states) + " states");
-  if (problem.num_states == 0 && problem.num_event_functions > 0)
-    throw std::invalid_argument(who + "event functions on a block without states are not supported");
   if (!(options.rtol > 0.0) || !(options.atol >= 0.0) || !(options.max_step >= 0.0) ||
       options.max_steps_per_call <= 0)
     throw std::invalid_argument(who + "invalid solver options");
@@ -156,6 +157,7 @@ long long first_sample_after(double t0, double ts, double at) {
 }
 
 void BlockIntegrator::Impl::integrate_to(double target) {
+  if (problem.num_states == 0 && problem.num_event_functions > 0) return step_stateless_events_to(target);
   if (problem.num_states == 0 || same_time(t, target)) {
     t = target;
     return;
@@ -180,9 +182,30 @@ void BlockIntegrator::Impl::integrate_to(double target) {
   }
 }
 
+// No solver: time moves from crossing to crossing, each located by bisection (stateless_events.h).
+void BlockIntegrator::Impl::step_stateless_events_to(double target) {
+  const auto g_at = [this](double at, std::span<double> g) {
+    problem.evaluate_inputs(at);
+    problem.block.event_functions(at, x(), problem.inputs, g);
+  };
+  std::vector<models::Crossing> directions;
+  for (int i = 0; i < problem.num_event_functions; ++i) directions.push_back(problem.block.event_direction(i));
+  while (!same_time(t, target)) {
+    const double resolution = kEventTimeResolution * std::max(1.0, std::abs(target));
+    const auto at = detail::first_stateless_crossing(g_at, directions, t, target, resolution, crossed);
+    if (!at) break;
+    t = *at;
+    dispatch_events();
+  }
+  t = target;
+}
+
 void BlockIntegrator::Impl::handle_root() {
   backend->root_info(crossed.data());
+  dispatch_events();
+}
 
+void BlockIntegrator::Impl::dispatch_events() {
   // Chattering guard: the same instant (within the resolution) counts the handled events.
   if (std::abs(t - last_event_time) <= kEventTimeResolution * std::max(1.0, std::abs(t)))
     ++events_at_this_time;
@@ -197,7 +220,7 @@ void BlockIntegrator::Impl::handle_root() {
     ++stats.roots_found;
   }
   problem.evaluate_inputs(t);
-  if (problem.block.handle_events(t, x(), problem.inputs, crossed)) restart_pending = true;
+  if (problem.block.handle_events(t, x(), problem.inputs, crossed) && backend) restart_pending = true;
 }
 
 void BlockIntegrator::Impl::restart() {

@@ -4,7 +4,8 @@
  *
  * Build-time faults for the importer's error tests:
  *   FMU_OMIT_DO_STEP         the binary lacks fmi2DoStep
- *   FMU_INSTANTIATE_FAILS    fmi2Instantiate returns NULL */
+ *   FMU_INSTANTIATE_FAILS    fmi2Instantiate returns NULL
+ *   FMU_INSTANTIATE_ABORTS   fmi2Instantiate aborts the process (an importer must survive it) */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -37,6 +38,9 @@ const char* fmi2GetVersion(void) { return "2.0"; }
 EXPORT fmi2InstantiateTYPE fmi2Instantiate;
 fmi2Component fmi2Instantiate(fmi2String name, fmi2Type type, fmi2String guid, fmi2String resources,
                               const fmi2CallbackFunctions* functions, fmi2Boolean visible, fmi2Boolean logging) {
+#ifdef FMU_INSTANTIATE_ABORTS
+  abort();
+#endif
 #ifdef FMU_INSTANTIATE_FAILS
   if (functions && functions->logger)
     functions->logger(functions->componentEnvironment, name, fmi2Error, "error", "this FMU never instantiates");

@@ -1,7 +1,7 @@
 /* FMI 3.0 entry points of the test FMUs, co-simulation and model exchange in one binary,
  * over the model of model.h, compiled against mechsim/fmi/fmi3_functions.h.
  * Build-time faults: FMU_OMIT_DO_STEP (no fmi3DoStep), FMU_INSTANTIATE_FAILS (both
- * instantiate functions return NULL). */
+ * instantiate functions return NULL), FMU_INSTANTIATE_ABORTS (they abort the process). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -25,6 +25,9 @@ static fmi3Status fail(Instance* s, const char* message) {
 static int valid(fmi3ValueReference vr) { return vr < (fmi3ValueReference)model_number_of_variables; }
 
 static Instance* instantiate(fmi3InstanceEnvironment environment, fmi3LogMessageCallback log) {
+#ifdef FMU_INSTANTIATE_ABORTS
+  abort();
+#endif
 #ifdef FMU_INSTANTIATE_FAILS
   if (log) log(environment, fmi3Error, "error", "this FMU never instantiates");
   return NULL;

@@ -1,7 +1,9 @@
 /* An integrator dy/dt = u that misbehaves on request, for the importer's error tests.
  * Parameter `fault` (Integer): 0 none; 1 the step (co-simulation) or the derivatives (model
  * exchange) fail with an error status once t passes fault_time; 2 the output y is NaN from
- * fault_time on; 3 the process aborts once t passes fault_time (a crashing FMU).
+ * fault_time on; 3 the process aborts once t passes fault_time (a crashing FMU); 4 the
+ * process exits with code 0 once t passes fault_time (a run that ends early, looking clean);
+ * 5 it writes through a null pointer once t passes fault_time (a segmentation fault).
  * Value references: 0 u [V] input, 1 y [V s] output (the state), 2 der(y) [V], 3 fault,
  * 4 fault_time [s] parameters, 5 faulted (Boolean output: t >= fault_time). */
 #include <math.h>
@@ -34,6 +36,11 @@ int model_event(Model* m) { return 0; }
 int model_check(Model* m, double t_end) {
   if (t_end <= m->value[FAULT_TIME]) return 0;
   if (m->value[FAULT] == 3) abort();
+  if (m->value[FAULT] == 4) exit(0);
+  if (m->value[FAULT] == 5) {
+    volatile int* nowhere = NULL;
+    *nowhere = 1;
+  }
   if (m->value[FAULT] != 1) return 0;
   m->error = "injected fault: the step fails past fault_time";
   return 1;

@@ -162,5 +162,51 @@ TEST_F(ArchiveErrors, BinaryThatDoesNotLoad) {
           {"FMU '" + file + "' (participant 'ctrl')", "cannot load its binary binaries/linux64/m.so"});
 }
 
+// Archive limits (archive.h): 16 MiB of zeros deflate to ~16 kB, a ratio near 1000 : 1, far
+// past the default 200 : 1 and any real FMU's; refused from the zip's directory, before a
+// byte is unpacked (no folder is made), with the numbers and the key that raises them.
+class ArchiveLimitsTest : public ArchiveErrors {
+ protected:
+  void SetUp() override {
+    write_zip(path("zeros.fmu"), {{"modelDescription.xml", kMinimalFmi2}, {"resources/zeros.bin", std::string(16u << 20, '\0')}});
+    set_unpack_root(scratch_.path("run/fmu"));
+  }
+  void TearDown() override { set_unpack_root(""); }
+};
+
+TEST_F(ArchiveLimitsTest, ARatioPastTheLimitIsRefusedBeforeUnpacking) {
+  const std::string file = path("zeros.fmu");
+  refusal([&] { FmuArchive(FmuLabel{file, "ctrl"}); },
+          {"FMU '" + file + "' (participant 'ctrl')", "unpacks to 16.00 MiB (16777", "a ratio of",
+           "the limits are 2.00 GiB unpacked and a ratio of 200 : 1", "unpack_limits", "refused before unpacking"});
+  EXPECT_FALSE(std::filesystem::exists(scratch_.path("run/fmu")));
+}
+
+TEST_F(ArchiveLimitsTest, ASizePastTheLimitIsRefusedAndRaisedLimitsAdmitIt) {
+  const std::string file = path("zeros.fmu");
+  refusal([&] { FmuArchive(FmuLabel{file, "ctrl"}, ArchiveLimits{1u << 20, 1e6}); },
+          {"unpacks to 16.00 MiB", "the limits are 1.00 MiB unpacked and a ratio of 1e+06 : 1"});
+  const FmuArchive raised(FmuLabel{file, "ctrl"}, ArchiveLimits{32u << 20, 1e6});
+  EXPECT_EQ(std::filesystem::file_size(raised.folder() / "resources/zeros.bin"), 16u << 20);
+}
+
+// With an unpack root (a run's <run folder>/fmu), an FMU unpacks once: the second archive
+// of the same participant (another process of the run, a restart) finds the folder whole
+// and reuses it, and neither removes it (the launcher does, at the end of the run).
+TEST_F(ArchiveLimitsTest, UnpackedOncePerRunFolderAndLeftForTheLauncher) {
+  std::filesystem::path first_folder;
+  std::filesystem::file_time_type unpacked_at;
+  {
+    const FmuArchive first(FmuLabel{test_fmu("lag_fmi2_cs"), "lag"});
+    first_folder = first.folder();
+    EXPECT_EQ(first_folder, scratch_.path("run/fmu/lag_fmi2_cs-lag"));
+    unpacked_at = std::filesystem::last_write_time(first_folder / "modelDescription.xml");
+    const FmuArchive second(FmuLabel{test_fmu("lag_fmi2_cs"), "lag"});
+    EXPECT_EQ(second.folder(), first_folder);
+  }
+  ASSERT_TRUE(std::filesystem::exists(first_folder / "modelDescription.xml"));
+  EXPECT_EQ(std::filesystem::last_write_time(first_folder / "modelDescription.xml"), unpacked_at) << "unpacked twice";
+}
+
 }  // namespace
 }  // namespace mechsim::fmi

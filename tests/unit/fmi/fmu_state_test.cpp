@@ -233,27 +233,36 @@ TEST_P(TickerBlock, ACheckpointHoldsTheDiscreteState) {
 
 INSTANTIATE_TEST_SUITE_P(TestFmus, TickerBlock, ::testing::Values("ticker_fmi2_me", "ticker_fmi3_me"));
 
-// A time event needs an integrator to land on it: the ticker's binary under a description
-// that declares no continuous state is refused when its first event iteration schedules one.
-TEST(TimeEvents, AnFmuWithoutStatesThatSchedulesOneIsRefused) {
-  test::ScratchFolder scratch;
-  std::vector<std::pair<std::string, std::string>> entries;
-  for (auto [name, content] : test::read_zip(test_fmu("ticker_fmi2_me"))) {
-    if (name == "modelDescription.xml") {
-      const std::string derivatives = R"(<Derivatives><Unknown index="5"/></Derivatives>)";
-      const auto at = content.find(derivatives);
-      if (at == std::string::npos) throw std::runtime_error("ticker fmi2.xml.in changed");
-      content.erase(at, derivatives.size());
-    }
-    entries.emplace_back(name, content);
+// A model-exchange FMU with time events and no continuous states (tests/fmus/staircase):
+// no integrator runs, the block integrator bisects on time for each time event and the
+// FMU's discrete update runs there. Every 1 ms for 1 s (100 steps of the stair, every tenth
+// macro instant on one), count and y against the closed form n(t) = floor(t / period),
+// right-continuous: exact (the count is an integer; y = height n, one product), and the
+// event found within the integrator's time resolution (1e-10 s) of its instant.
+class StaircaseBlock : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(StaircaseBlock, RunsTheDiscreteUpdateAtEachEventTimeAsTheClosedForm) {
+  constexpr double period = 0.01, height = 0.002;
+  ModelExchangeBlock block(open(GetParam()), {{"period", period}, {"height", height}}, 0.0, 1.0);
+  ASSERT_EQ(block.num_states(), 0);
+  solve::BlockIntegrator integrator(block, tight(), 0.0, {});
+  std::vector<double> y(2);
+  const int count = block.output_index("count"), stair = block.output_index("y");
+  for (int k = 0; k <= 1000; ++k) {
+    const double t = k * 1e-3;
+    integrator.advance_to(t, {});
+    block.calc_outputs(t, {}, {}, y);
+    const double n = std::floor(t / period + 1e-9);
+    ASSERT_EQ(y[static_cast<std::size_t>(count)], n) << "t = " << t;
+    ASSERT_EQ(y[static_cast<std::size_t>(stair)], height * n) << "t = " << t;
+    EXPECT_NEAR(block.next_time_event(), (n + 1) * period, 1e-15) << "t = " << t;
   }
-  const std::string file = scratch.path("stateless_ticker.fmu").string();
-  test::write_zip(file, entries);
-  const auto archive = std::make_shared<const FmuArchive>(FmuLabel{file, "p"});
-  const std::string what = refusal_text([&] { ModelExchangeBlock block(archive, {}, 0.0, 1.0); });
-  EXPECT_NE(what.find("(participant 'p'): schedules a time event (nextEventTime = 0.01"), std::string::npos) << what;
-  EXPECT_NE(what.find("but has no continuous states"), std::string::npos) << what;
+  const auto events = integrator.take_events();
+  ASSERT_EQ(events.size(), 100u);
+  for (std::size_t i = 0; i < events.size(); ++i) EXPECT_NEAR(events[i].t, (i + 1) * period, 1e-10) << "event " << i;
 }
+
+INSTANTIATE_TEST_SUITE_P(TestFmus, StaircaseBlock, ::testing::Values("staircase_fmi2_me", "staircase_fmi3_me"));
 
 class TickerCoSimulation : public ::testing::TestWithParam<const char*> {};
 

@@ -72,6 +72,8 @@ struct SupervisorOptions {
   std::vector<std::string> restartable;
   // The start command; its start_wall_ns is set when it is sent (real-time pacing).
   transport::ControlMessage start;
+  // The grid's last step, for the message on a node that ended early (0: not known, adaptive).
+  std::uint64_t last_step = 0;
   // Appended to the "not ready" failure, e.g. where the logs are.
   std::string not_ready_hint;
 };
@@ -117,6 +119,8 @@ class Supervisor {
   NodeHost& host_of(const std::string& node) const;
   // The node's last step: its output log's, else its last heartbeat's.
   std::uint64_t last_step_of(const std::string& node) const;
+  // The step the node reached: its end record's (node_end_record.h), else last_step_of.
+  std::uint64_t reached_step(const std::string& node) const;
 
  private:
   // The passes of run().
@@ -128,6 +132,8 @@ class Supervisor {
   bool finish_if_all_exited();  // true once every node's process has exited (the run is ok)
   void take_status();
   void check_exits(bool running);
+  bool reached_end(const std::string& node);
+  std::string of_last_step() const;
   void roll_back();
   void watch_silence();
   bool wait_ready();

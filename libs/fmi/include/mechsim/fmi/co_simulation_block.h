@@ -33,9 +33,11 @@
 
 namespace mechsim::fmi {
 
+class LazyInstance;  // lazy_instance.h
+
 class CoSimulationBlock final : public models::Block {
  public:
-  // Instantiates the FMU of `archive` (shared: the unpacked folder lives as long as the block) for co-simulation,
+  // Instantiates (now or at first use: instantiation.h) the FMU of `archive` (shared: the unpacked folder lives as long as the block) for co-simulation,
   // sets `parameters` (name -> value in the FMU's unit) in initialization mode, initializes
   // it at t0, and steps it every `step_size` seconds (> 0).
   CoSimulationBlock(std::shared_ptr<const FmuArchive> archive, const std::map<std::string, double>& parameters, double t0,
@@ -47,16 +49,21 @@ class CoSimulationBlock final : public models::Block {
   void discrete_update(double t, std::span<double> x, std::span<const double> u) override;
   std::vector<double> save_discrete_state() const override;
   void restore_discrete_state(std::span<const double> saved) override;
+  // Loads, instantiates and initializes the FMU if it has not been yet (instantiation.h).
+  void instantiate_now() const;
+  const FmuArchive& archive() const { return *archive_; }
+  ~CoSimulationBlock() override;
 
  private:
+  FmuInstance& fmu() const;
   std::shared_ptr<const FmuArchive> archive_;
-  std::unique_ptr<FmuInstance> fmu_;
+  std::unique_ptr<LazyInstance> fmu_;  // made now or at first use (instantiation.h)
   std::vector<const Variable*> inputs_, outputs_;
   double step_size_;
   bool can_save_state_ = false;  // canGetAndSetFMUstate and canSerializeFMUstate
   double last_sample_ = 0.0;
   bool sampled_once_ = false;
-  std::vector<double> held_;  // outputs at the last sample
+  mutable std::vector<double> held_;  // outputs at the last sample
 };
 
 }  // namespace mechsim::fmi

@@ -40,9 +40,11 @@
 
 namespace mechsim::fmi {
 
+class LazyInstance;  // lazy_instance.h
+
 class ModelExchangeBlock final : public models::Block {
  public:
-  // Instantiates the FMU of `archive` (shared: the unpacked folder lives as long as the block) for model exchange,
+  // Instantiates (now or at first use: instantiation.h) the FMU of `archive` (shared: the unpacked folder lives as long as the block) for model exchange,
   // sets `parameters` (name -> value in the FMU's unit) in initialization mode and
   // initializes it at t0.
   ModelExchangeBlock(std::shared_ptr<const FmuArchive> archive, const std::map<std::string, double>& parameters, double t0,
@@ -64,21 +66,26 @@ class ModelExchangeBlock final : public models::Block {
 
   // The time event the FMU scheduled last (+inf: none).
   double next_time_event() const { return next_time_event_; }
+  // Loads, instantiates and initializes the FMU if it has not been yet (instantiation.h).
+  void instantiate_now() const;
+  const FmuArchive& archive() const { return *archive_; }
+  ~ModelExchangeBlock() override;
 
  private:
+  FmuInstance& fmu() const;
   // Hands t, x and u to the FMU (the calls every evaluation starts with).
   void load(double t, std::span<const double> x, std::span<const double> u) const;
   // Ends an event iteration at t: refuses what the block cannot honour, keeps the next time event.
-  void take_update(const DiscreteUpdate& update, double t);
+  void take_update(const DiscreteUpdate& update, double t) const;
 
   std::shared_ptr<const FmuArchive> archive_;
-  std::unique_ptr<FmuInstance> fmu_;
+  std::unique_ptr<LazyInstance> fmu_;  // made now or at first use (instantiation.h)
   std::vector<const Variable*> inputs_, outputs_;
-  std::vector<double> x0_;
+  mutable std::vector<double> x0_;
   int num_indicators_ = 0;
-  bool has_time_events_ = false;  // an event function for time events (the FMU has states)
+  bool has_time_events_ = false;  // the event function of the FMU's time events (always: with states or without)
   bool can_save_state_ = false;   // canGetAndSetFMUstate and canSerializeFMUstate
-  double next_time_event_;
+  mutable double next_time_event_;
 };
 
 }  // namespace mechsim::fmi
