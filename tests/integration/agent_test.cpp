@@ -25,6 +25,17 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
+// Removes a test's folder while an agent session may still be removing its own work folder
+// inside it (the session ends after the client): tolerates entries that vanish under it.
+void remove_test_dir(const fs::path& dir) {
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    std::error_code ec;
+    fs::remove_all(dir, ec);
+    if (!ec && !fs::exists(dir)) return;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+}
+
 // The requests a start must pass, on either transport: refused by the agent, each naming why.
 void expect_refusals(hostrun::AgentClient& client, int domain, const fs::path& log) {
   const json good{{"type", "follower"}, {"scene_yaml", ""}, {"run_folder", "r"}, {"domain", domain},
@@ -72,7 +83,7 @@ TEST(Agent, RefusesAnythingButAMechsimNodeOfItsDomain) {
   EXPECT_FALSE(r.timed_out);
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("mechsim agent: stopped"), std::string::npos) << r.output;
-  fs::remove_all(dir);
+  remove_test_dir(dir);
 }
 
 // Two agents on one work folder would overwrite each other's DDS configuration and hand
@@ -105,7 +116,7 @@ TEST(Agent, ASecondAgentOnAWorkFolderInUseIsRefused) {
   const CommandResult third = run(third_argv, (dir / "third.log").string(), 30);
   EXPECT_EQ(third.exit_code, 0) << third.output;
   EXPECT_NE(third.output.find("work folder " + (dir / "work").string() + ","), std::string::npos) << third.output;
-  fs::remove_all(dir);
+  remove_test_dir(dir);
 }
 
 // The session's agent (what `ssh HOST mechsim agent --stdio` runs): the same refusals as the
@@ -113,7 +124,7 @@ TEST(Agent, ASecondAgentOnAWorkFolderInUseIsRefused) {
 // closed), saying so, and removes its work folder.
 TEST(StdioAgent, RefusesLikeTheDaemonAndEndsWithItsSession) {
   const fs::path dir = fs::temp_directory_path() / ("mechsim-stdio-agent-test-" + std::to_string(::getpid()));
-  fs::remove_all(dir);
+  remove_test_dir(dir);
   fs::create_directories(dir / "run");
   const int domain = 9;  // no DDS participant is made: any domain
   {
@@ -133,14 +144,14 @@ TEST(StdioAgent, RefusesLikeTheDaemonAndEndsWithItsSession) {
   EXPECT_NE(log.find("serving the session of "), std::string::npos) << log;
   EXPECT_NE(log.find("session over: the launcher closed the session"), std::string::npos) << log;
   EXPECT_NE(log.find("refused node 'a' of run 42 from the session of "), std::string::npos) << log;
-  fs::remove_all(dir);
+  remove_test_dir(dir);
 }
 
 // A host's bounds (docs/hosts.md, "Bounds"): with --max-processes 1 a second node is refused
 // while the first runs, and with --max-file-bytes a start request whose scene is larger.
 TEST(StdioAgent, RefusesWhatWouldExceedTheHostsBounds) {
   const fs::path dir = fs::temp_directory_path() / ("mechsim-stdio-bounds-test-" + std::to_string(::getpid()));
-  fs::remove_all(dir);
+  remove_test_dir(dir);
   fs::create_directories(dir / "run");
   const int domain = 9;
   const std::string scene = slurp(MECHSIM_SOURCE_DIR "/config/scenes/cam_press.yaml");
@@ -169,7 +180,7 @@ TEST(StdioAgent, RefusesWhatWouldExceedTheHostsBounds) {
   EXPECT_NE(refused["big"].find("exceeds this host's --max-file-bytes " + std::to_string(scene.size() + 1000)), std::string::npos)
       << refused["big"];
   EXPECT_TRUE(client.collect(20).empty());
-  fs::remove_all(dir);
+  remove_test_dir(dir);
 }
 
 // Bytes that are not agent frames (or a frame over the limit) end the session at once, with a
@@ -177,7 +188,7 @@ TEST(StdioAgent, RefusesWhatWouldExceedTheHostsBounds) {
 TEST(StdioAgent, RefusesASessionThatSendsSomethingElse) {
   const std::string mechsim = std::string(MECHSIM_BIN_DIR) + "/mechsim";
   const fs::path dir = fs::temp_directory_path() / ("mechsim-stdio-junk-test-" + std::to_string(::getpid()));
-  fs::remove_all(dir);
+  remove_test_dir(dir);
   fs::create_directories(dir);
   const CommandResult junk = run({"/bin/sh", "-c", "printf 'GET / HTTP/1.1\\r\\n\\r\\n' | " + mechsim + " agent --stdio --domain 9 --work-dir " +
                                                        (dir / "w1").string()},
@@ -190,7 +201,7 @@ TEST(StdioAgent, RefusesASessionThatSendsSomethingElse) {
                                                       (dir / "w2").string()},
                                 (dir / "big.log").string(), 30);
   EXPECT_NE(big.output.find("a frame of 2147483647 bytes, over the limit of 4194304 bytes"), std::string::npos) << big.output;
-  fs::remove_all(dir);
+  remove_test_dir(dir);
 }
 
 // The standing daemon authenticates nobody: on a non-loopback address it refuses to serve,
@@ -210,7 +221,7 @@ TEST(Agent, ADaemonOnANetworkAddressIsRefusedWithoutTheOptionThatAcceptsTheRisk)
                                     (dir / "allowed.log").string(), 30);
   EXPECT_EQ(allowed.exit_code, 1) << allowed.output;
   EXPECT_NE(allowed.output.find("--address 10.99.88.77 is not an address of this host"), std::string::npos) << allowed.output;
-  fs::remove_all(dir);
+  remove_test_dir(dir);
 }
 
 }  // namespace
