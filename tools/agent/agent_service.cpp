@@ -20,6 +20,7 @@
 #include "mechsim/config/scene.h"
 #include "mechsim/catalog/catalog.h"
 #include "mechsim/cosim/node_command_line.h"
+#include "mechsim/cosim/node_end_record.h"
 #include "mechsim/transport/network_config.h"
 
 namespace mechsim::agent {
@@ -67,6 +68,7 @@ struct AgentService::Run {
   hostrun::NodeProcesses processes;
   std::map<std::string, std::uint64_t> log_sent;  // node -> bytes of its log already sent
   std::set<std::string> exit_reported;
+  std::map<std::string, std::vector<std::string>> members;  // process -> the nodes it steps
   Clock::time_point last_heartbeat = Clock::now();
   double heartbeat_timeout_s = 5.0;
 };
@@ -195,6 +197,7 @@ void AgentService::start_node(const transport::AgentMessage& m, const std::strin
       command_line.control_writer = guid;
     }
     run.processes.start(m.node, executable, command_line.to_arguments(), (run.folder / (m.node + ".log")).string(), env);
+    run.members[m.node] = members;
   } catch (const std::exception& e) {
     return refuse(e.what());
   }
@@ -285,8 +288,15 @@ void AgentService::report_exits(Run& run) {
   for (const auto& p : run.processes.processes()) {
     if (!p.exited || run.exit_reported.count(p.name)) continue;
     stream_logs(run);  // the last lines before the exit report
+    // Whether it wrote its end record (node_end_record.h): the record is on this host, and the
+    // launcher tells a node that finished from one that exited 0 early by it.
+    const auto& members = run.members[p.name];
+    const bool reached_end = !members.empty() && std::all_of(members.begin(), members.end(), [&](const std::string& node) {
+      return cosim::read_node_end_record(run.folder.string(), node).has_value();
+    });
     reply(run.run_id, static_cast<std::int32_t>(AgentKind::exited), p.name,
-          json{{"exit_code", p.exit_code}, {"signalled", p.signalled}, {"signal", p.signal}, {"describe", p.describe_exit()}}.dump());
+          json{{"exit_code", p.exit_code}, {"signalled", p.signalled}, {"signal", p.signal}, {"describe", p.describe_exit()},
+               {"reached_end", reached_end}}.dump());
     log_line("run " + std::to_string(run.run_id) + ": node '" + p.name + "' " + p.describe_exit());
     run.exit_reported.insert(p.name);
   }

@@ -127,6 +127,7 @@ void AgentClient::handle(const transport::AgentMessage& m) {
         e.signalled = j.value("signalled", false);
         e.signal = j.value("signal", 0);
         e.describe = j.value("describe", std::string("exit")) + " on " + m.host;
+        e.reached_end = j.value("reached_end", false);
       }
       exits_.push_back(e);
       break;

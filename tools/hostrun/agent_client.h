@@ -24,6 +24,7 @@ struct RemoteExit {
   bool signalled = false;
   int signal = 0;
   std::string describe;  // "exit code 0 on 10.77.0.2", "refused by the agent on ...: why"
+  bool reached_end = false;  // the node wrote its end record on its host (node_end_record.h)
 };
 
 class AgentClient {

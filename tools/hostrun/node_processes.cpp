@@ -112,6 +112,7 @@ std::vector<NodeProcess*> NodeProcesses::poll() {
           p.signalled = e.signalled;
           p.signal = e.signal;
           p.remote_exit = e.describe;
+          p.remote_reached_end = e.reached_end;
           exited.push_back(&p);
         }
   for (auto& p : processes_) {

@@ -19,6 +19,7 @@ struct NodeProcess {
   pid_t pid = -1;
   std::string host{};    // address of the agent that started it; "" = a child of this process
   std::string remote_exit{};  // a remote node's exit as its agent described it
+  bool remote_reached_end = false;  // a remote node wrote its end record on its host
   bool exited = false;
   int exit_code = 0;     // valid when exited and !signalled
   bool signalled = false;

@@ -37,7 +37,10 @@ std::vector<cosim::NodeExit> node_exits(const std::vector<Process>& processes, c
   for (const hostrun::NodeProcess* s : stopped)
     for (const auto& p : processes)
       if (p.name == s->name)
-        for (const auto& member : p.members) out.push_back(cosim::node_exit(member, s->exit_code, s->signalled));
+        for (const auto& member : p.members) {
+          out.push_back(cosim::node_exit(member, s->exit_code, s->signalled));
+          out.back().reached_end = s->remote_reached_end;
+        }
   return out;
 }
 

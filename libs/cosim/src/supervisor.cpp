@@ -129,7 +129,7 @@ void Supervisor::check_exits(bool running) {
                        " restart(s): faults.restart_limit " + std::to_string(opt_.restart_limit) + " reached");
       continue;
     }
-    if (e.clean && running && !reached_end(e.node)) {
+    if (e.clean && running && !e.reached_end && !reached_end(e.node)) {
       // Exit code 0 without the last step (an FMU's exit(0) in its step): the run is short.
       fail(e.node, "node '" + e.node + "' ended early: " + host.describe_exit(e.node) + " at step " +
                        std::to_string(last_step_of(e.node)) + of_last_step() + ", before its last step; the run is incomplete");

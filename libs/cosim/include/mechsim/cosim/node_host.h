@@ -29,6 +29,9 @@ struct NodeExit {
   bool clean = false;     // finished normally (exit code 0)
   bool crashed = false;   // died on a signal (killed, a crash, the OOM killer): a restart may help
   bool diverged = false;  // exit code node_exit_code::diverged
+  // Its host saw the node's end record (node_end_record.h): a remote node's agent reads it
+  // where the node ran, before the files come back.
+  bool reached_end = false;
 };
 
 // The NodeExit of `node` from its exit code (or its signal).
