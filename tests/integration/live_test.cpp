@@ -139,8 +139,12 @@ TEST_F(Live, ARunWatchedThroughTheProtocolShowsTheNodesValuesAndIsUnchanged) {
     if (!late && std::chrono::steady_clock::now() - connected > 1500ms) {
       late = std::make_unique<WsTestClient>(uri, "foxglove.websocket.v1", 5s);
       EXPECT_TRUE(late->opened());
-      std::this_thread::sleep_for(50ms);
-      late_watch.take(*late);
+      // Its advertisement first (the run's four topics at least), however long that takes here.
+      for (const auto until = std::chrono::steady_clock::now() + 5s;
+           late_watch.channels.size() < 4 && std::chrono::steady_clock::now() < until;) {
+        late_watch.take(*late);
+        std::this_thread::sleep_for(5ms);
+      }
       late_watch.subscribe_all(*late);
       late_subscriptions = late_watch.topic_of_subscription.size();
       late_subscribed = std::chrono::steady_clock::now();
